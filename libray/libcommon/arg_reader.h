@@ -1,0 +1,76 @@
+// How primitives, textures and lights read their own arguments from a scene file.
+//
+// libshade implements this over its token stream; factories in libray read through it, so
+// adding a primitive never touches the grammar. Every Read* call reports a located error
+// (with the keyword's usage line) and throws FatalError when the next token does not fit,
+// so factories need no error handling of their own for malformed input.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "libcommon/error.h"
+#include "libcommon/vector.h"
+
+namespace rs {
+
+struct Surface;
+
+// A number that may vary with time (animated transform or implicit skeleton parameters).
+struct AnimatedValue {
+    double value = 0;                  // the value when not animated
+    std::function<double(double)> at;  // empty when static; else value at a time
+
+    bool IsAnimated() const { return static_cast<bool>(at); }
+    double At(double time) const { return at ? at(time) : value; }
+};
+
+class ArgReader {
+  public:
+    virtual ~ArgReader() = default;
+
+    // Static numbers: NUMBER, ±NUMBER or a parenthesised expression (spec §1.4).
+    virtual double ReadNumber() = 0;
+    // As ReadNumber, truncated toward zero.
+    virtual int ReadInt() = 0;
+    Vec3 ReadVector() {
+        double x = ReadNumber(), y = ReadNumber(), z = ReadNumber();
+        return {x, y, z};
+    }
+    Color ReadColor() {
+        double r = ReadNumber(), g = ReadNumber(), b = ReadNumber();
+        return {r, g, b};
+    }
+    // A number that may depend on time, frame or linear().
+    virtual AnimatedValue ReadAnimatedNumber() = 0;
+
+    // True when the next token can start a number (so open-ended lists can loop).
+    virtual bool PeekNumber() = 0;
+    // Consumes the next token if it is the keyword or name `word`; returns whether it did.
+    virtual bool Accept(const char* word) = 0;
+    // True when the next token is the keyword or name `word` (nothing consumed).
+    virtual bool Peek(const char* word) = 0;
+    // A NAME token.
+    virtual std::string ReadName() = 0;
+    // A file name, resolved relative to the current directory.
+    virtual std::string ReadFilename() = 0;
+    // True when the next token can start a file name (optional file arguments).
+    virtual bool PeekFilename() = 0;
+    // A surface expression (spec §2 `surface`): attributes, a surface name, or cursurf.
+    virtual Surface ReadSurface() = 0;
+
+    // The -f flag: triangles and polygons flip their normals when it is set.
+    virtual bool FlipNormals() const = 0;
+
+    // Where the current keyword started, for messages.
+    virtual SourceLocation Location() const = 0;
+    // A warning at the current location (primitives use it for degenerate input before
+    // returning nullptr, which discards the object as the original does).
+    virtual void Warn(const std::string& message) = 0;
+    virtual void Advise(const std::string& message) = 0;
+    // A fatal error at the current location, with the keyword's usage line appended.
+    [[noreturn]] virtual void Fail(const std::string& message) = 0;
+};
+
+}  // namespace rs

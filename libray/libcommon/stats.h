@@ -1,0 +1,44 @@
+// Statistics counters. Counting is cheap and lock-free: every thread increments its own
+// array; StatsSnapshot() sums all threads' arrays (call it when rendering has stopped).
+// Counters are registered by name once (typically in a function-local static) and
+// addressed by the returned id. The library only counts; libshade formats the report.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rs {
+
+using CounterId = int;
+
+// Returns the id of the counter called `name`, creating it on first use. Thread-safe.
+CounterId RegisterCounter(const std::string& name);
+
+namespace detail {
+inline constexpr int kMaxCounters = 1024;
+uint64_t* ThreadCounters();
+}  // namespace detail
+
+inline void Count(CounterId id, uint64_t n = 1) { detail::ThreadCounters()[id] += n; }
+
+struct CounterValue {
+    std::string name;
+    uint64_t value;
+};
+
+// All registered counters in registration order, summed over every thread so far.
+std::vector<CounterValue> StatsSnapshot();
+uint64_t CounterTotal(const std::string& name);
+// Zeroes every thread's counters (between frames, or between tests).
+void ResetStats();
+
+// The pair of counters of a primitive type: "<Type> tests" and "<Type> hits". The report
+// prints one line per type that was tested, in the spec's order (§5).
+struct IntersectionCounters {
+    explicit IntersectionCounters(const std::string& typeName)
+        : tests(RegisterCounter(typeName + " tests")), hits(RegisterCounter(typeName + " hits")) {}
+    CounterId tests, hits;
+};
+
+}  // namespace rs

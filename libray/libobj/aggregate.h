@@ -1,0 +1,40 @@
+// Aggregates (list, grid, CSG) hold child nodes and search them for the nearest hit.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "libobj/hit.h"
+
+namespace rs {
+
+class Object;
+
+class Aggregate {
+  public:
+    virtual ~Aggregate() = default;
+
+    virtual const char* TypeName() const = 0;  // "list", "grid", "union", ...
+
+    // Nearest hit among the children with tMin < t < tMax, in the aggregate's object space.
+    // On success shrinks tMax to the hit's t, fills `hit` (via the children) and returns
+    // true; on failure leaves tMax and `hit` untouched.
+    virtual bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const = 0;
+
+    // Box around the bounded children (object space) and whether there are any.
+    virtual Bounds3 Bounds() const = 0;
+    virtual bool IsBounded() const = 0;
+    virtual bool IsClosed() const { return false; }
+
+    // Recomputes bounds (and rebuilds grids) for the frame starting at frameTime, after the
+    // children have been prepared. `shutter` is the exposure length (0: no motion blur).
+    virtual void PrepareFrame(double frameTime, double shutter) = 0;
+
+    const std::vector<std::shared_ptr<Object>>& Children() const { return children_; }
+    void AddChild(std::shared_ptr<Object> child) { children_.push_back(std::move(child)); }
+
+  protected:
+    std::vector<std::shared_ptr<Object>> children_;
+};
+
+}  // namespace rs

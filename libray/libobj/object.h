@@ -1,0 +1,73 @@
+// A node of the scene graph: a primitive, an aggregate, or an instance of a named node
+// ("object NAME"), with its own transform list, optional surface and textures.
+//
+// Nodes form a DAG: a named node may be instanced many times. Each node's transform maps
+// the node's object space to its parent's space (parentFromObject).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "libcommon/transform.h"
+#include "libobj/aggregate.h"
+#include "libobj/hit.h"
+#include "libobj/primitive.h"
+
+namespace rs {
+
+struct Surface;
+class Texture;
+
+class Object {
+  public:
+    enum class Kind { Primitive, Aggregate, Instance };
+
+    static std::shared_ptr<Object> MakePrimitive(std::shared_ptr<Primitive> p);
+    static std::shared_ptr<Object> MakeAggregate(std::shared_ptr<Aggregate> a);
+    static std::shared_ptr<Object> MakeInstance(std::shared_ptr<Object> of);
+
+    Kind kind() const { return kind_; }
+    const Primitive* primitive() const { return primitive_.get(); }
+    Primitive* primitive() { return primitive_.get(); }
+    const Aggregate* aggregate() const { return aggregate_.get(); }
+    const Object* instanceOf() const { return instanceOf_.get(); }
+
+    std::string name;  // the `name` it was defined under, for reports; may be empty
+    TransformList parentFromObject;
+    std::shared_ptr<const Surface> surface;  // null: inherit from the nearest ancestor
+    std::vector<std::shared_ptr<const Texture>> textures;  // applied in written order
+
+    // Nearest hit with tMin < t < tMax for a ray given in the PARENT's space. On success
+    // shrinks tMax, fills `hit`, appends this node to hit.path and returns true.
+    bool Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const;
+
+    // Bounds in the parent's space for the current frame (union over the shutter interval
+    // when animated) and whether the node is bounded at all (planes are not).
+    const Bounds3& BoundsInParent() const { return boundsInParent_; }
+    bool IsBounded() const { return bounded_; }
+    bool IsClosed() const;
+
+    // Prepares this node and everything below it for a frame: lets primitives rebuild,
+    // rebuilds aggregates, recomputes bounds. Safe to call more than once per frame on a
+    // shared node (the work is done once per distinct frameTime).
+    void PrepareFrame(double frameTime, double shutter);
+
+    // Number of primitives below this node (instances count their target's).
+    long PrimitiveCount() const;
+
+  private:
+    explicit Object(Kind k) : kind_(k) {}
+
+    Kind kind_;
+    std::shared_ptr<Primitive> primitive_;
+    std::shared_ptr<Aggregate> aggregate_;
+    std::shared_ptr<Object> instanceOf_;
+
+    Bounds3 boundsObject_;   // bounds in the node's own space (for the ray pre-test)
+    Bounds3 boundsInParent_;
+    bool bounded_ = false;
+    double preparedFor_ = -1e300;
+};
+
+}  // namespace rs
