@@ -1,6 +1,7 @@
 #include "rayshade/tracer.h"
 
 #include <cmath>
+#include <optional>
 
 #include "libcommon/constants.h"
 #include "libcommon/stats.h"
@@ -80,13 +81,17 @@ const Surface& Tracer::UntexturedSurface(const HitRecord& hit) const {
 
 Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool textured,
                                       SampleState& sample) const {
-    // Transforms along the path at the ray's time; path[0] is the primitive's node.
-    Transform nodeTransforms[HitRecord::kMaxPath];
+    // Transforms along the path at the ray's time; path[0] is the primitive's node. Static
+    // lists are referenced, animated ones evaluated into `animated`.
+    const Transform* nodeTransforms[HitRecord::kMaxPath];
+    std::optional<Transform> animated[HitRecord::kMaxPath];
     Transform worldFromPrimitive;
     for (int i = 0; i < hit.pathLength; ++i) {
         const TransformList& list = hit.path[i]->parentFromObject;
-        nodeTransforms[i] = list.IsIdentity() ? Transform{} : list.At(ray.time);
-        worldFromPrimitive = worldFromPrimitive.Then(nodeTransforms[i]);
+        nodeTransforms[i] = list.IsIdentity()    ? nullptr
+                            : list.IsAnimated() ? &animated[i].emplace(list.At(ray.time))
+                                                : &list.Static();
+        if (nodeTransforms[i]) worldFromPrimitive = worldFromPrimitive.Then(*nodeTransforms[i]);
     }
     const Ray rayPrimitive = worldFromPrimitive.InverseRay(ray);
     const Vec3 pPrimitive = rayPrimitive.At(hit.t());
@@ -110,8 +115,8 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
         ctx.samplesPerSide = sample.samplesPerSide;
         ctx.rng = sample.rng;
         for (int i = 0; i < hit.pathLength; ++i) {
-            const Transform& t = nodeTransforms[i];
-            if (!t.IsIdentity()) {
+            if (nodeTransforms[i]) {
+                const Transform& t = *nodeTransforms[i];
                 p = t.ApplyPoint(p);
                 n = Normalize(t.ApplyNormal(n));
                 ng = Normalize(t.ApplyNormal(ng));
