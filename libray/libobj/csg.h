@@ -11,7 +11,6 @@ class CsgAggregate final : public Aggregate {
 
     explicit CsgAggregate(Op op) : op_(op) {}
 
-    Op op() const { return op_; }
     const char* TypeName() const override;
 
     // Exactly two children (A first, then B) make a valid CSG node; the parser warns and
