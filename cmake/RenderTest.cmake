@@ -25,7 +25,7 @@
 # contain ';'. The tests carry the label "regression" plus LABELS.
 include_guard(GLOBAL)
 
-set(RAYSHADE_THRESHOLDS_FILE "/work/shared/reference/thresholds.tsv" CACHE FILEPATH
+set(RAYSHADE_THRESHOLDS_FILE "${RAYSHADE_SHARED_DIR}/reference/thresholds.tsv" CACHE FILEPATH
     "Per-scene imgdiff thresholds used by add_render_test(... THRESHOLDS scene res)")
 
 set(_RAYSHADE_RENDER_TEST_DRIVER "${CMAKE_CURRENT_LIST_DIR}/run_render_test.cmake")

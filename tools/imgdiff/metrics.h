@@ -1,5 +1,5 @@
 // The image comparison behind imgdiff: a 4×4 box downsample of both images, then four
-// statistics bounded by thresholds (see /work/shared/reference/thresholds.tsv).
+// statistics bounded by thresholds (see shared/reference/thresholds.tsv).
 #pragma once
 
 #include <optional>

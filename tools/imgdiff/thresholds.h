@@ -1,5 +1,5 @@
 // Per-scene comparison thresholds, read from a table in the format of
-// /work/shared/reference/thresholds.tsv: '#' comment lines and blank lines are skipped; every
+// shared/reference/thresholds.tsv: '#' comment lines and blank lines are skipped; every
 // other line has six whitespace-separated fields
 //     scene  resolution  mean  max  frac  bright
 // where scene is a scene name or "default" (any scene) and resolution is a number (the
