@@ -16,7 +16,7 @@ constexpr int kHashSize = 4096;
 constexpr int kHashMask = kHashSize - 1;
 // Gradient table: a lattice corner hashes to m in [0, 255] and DNoise reads up to R[m + 11].
 constexpr int kGradientSize = 256 + 11;
-// Shift applied to every coordinate so lattice indices are positive for |p| < 10^6.
+// Shift applied to every coordinate (the original's), keeping indices positive above −10^6.
 constexpr double kNoiseShift = 1e6;
 
 // CRC-16/ARC (reflected polynomial 0xA001, initial value 0) of `size` bytes.
@@ -70,7 +70,7 @@ struct Axis {
 inline Axis MakeAxis(double coordinate) {
     double q = coordinate + kNoiseShift;
     long i = static_cast<long>(q);
-    if (q < static_cast<double>(i)) --i;  // floor for the (unsupported) far negative range
+    if (q < static_cast<double>(i)) --i;  // floor, also below −10^6
     Axis a;
     double f = q - static_cast<double>(i);
     double s = f * f * (3.0 - 2.0 * f);
