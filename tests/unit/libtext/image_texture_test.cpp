@@ -7,13 +7,13 @@
 namespace rs {
 namespace {
 
-// 2×2 RGB, stored top row first: top = red, green; bottom = blue, white.
+// 2×2 RGB. Stored row 0 (texture v in [0, ½)) = blue, white; row 1 = red, green.
 std::shared_ptr<const Image> Quad() {
     auto image = std::make_shared<Image>();
     image->width = 2;
     image->height = 2;
     image->channels = 3;
-    image->pixels = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
+    image->pixels = {0, 0, 255, 255, 255, 255, 255, 0, 0, 0, 255, 0};
     return image;
 }
 
@@ -52,7 +52,7 @@ void ExpectColorNear(const Color& a, const Color& b, double tol = 1e-12) {
     EXPECT_NEAR(a.b, b.b, tol);
 }
 
-TEST(ImageTexture, VZeroIsTheBottomRowAndTilesRepeat) {
+TEST(ImageTexture, VZeroIsTheFirstStoredRowAndTilesRepeat) {
     ImageTexture texture(Quad(), Planar());
     struct Case {
         double u, v;
@@ -73,7 +73,7 @@ TEST(ImageTexture, TextureTransformActsOnUV) {
     ImageTexture texture(Quad(), Planar());
     texture.transform.Append(*Transform::Scale({2, 2, 2}));
     Surface s = White();
-    TextureContext ctx = At(1.5, 0.5);  // (u, v) = (0.75, 0.25): bottom right
+    TextureContext ctx = At(1.5, 0.5);  // (u, v) = (0.75, 0.25): row 0, right
     texture.Apply(ctx, s);
     EXPECT_EQ(s.diffuse, Color(1, 1, 1));
 }
@@ -93,8 +93,8 @@ TEST(ImageTexture, ScalarComponentUsesRange) {
     o.component = ImageComponent::Reflect;
     o.hi = 0.9;
     o.lo = 0.1;
-    // Bottom-left pixel 51 = 0.2 → 0.1 + 0.2·0.8 = 0.26.
-    ImageTexture texture(Grey(1, {0, 0, 51, 0}), o);
+    // Row 0, left pixel 51 = 0.2 → 0.1 + 0.2·0.8 = 0.26.
+    ImageTexture texture(Grey(1, {51, 0, 0, 0}), o);
     Surface s = White();
     s.reflect = 0.5;
     TextureContext ctx = At(0.25, 0.25);
@@ -104,8 +104,8 @@ TEST(ImageTexture, ScalarComponentUsesRange) {
 }
 
 TEST(ImageTexture, AlphaSkipsOrBlends) {
-    // Grey + alpha: bottom-left fully transparent, bottom-right 51/255 grey at alpha 0.6.
-    ImageTexture texture(Grey(2, {0, 0, 0, 0, 0, 0, 51, 153}), Planar());
+    // Grey + alpha, row 0: left fully transparent, right 51/255 grey at alpha 0.6.
+    ImageTexture texture(Grey(2, {0, 0, 51, 153, 0, 0, 0, 0}), Planar());
     Surface clear = White();
     TextureContext left = At(0.25, 0.25);
     texture.Apply(left, clear);
@@ -130,12 +130,12 @@ TEST(ImageTexture, TextSurfaceIsTheBase) {
 }
 
 TEST(ImageTexture, BumpUsesForwardDifferences) {
-    // Heights: bottom row 0, 51; top row 102, 0 (in 1/255 units). At the bottom-left pixel
+    // Heights: row 0: 0, 51; row 1: 102, 0 (in 1/255 units). At row 0's left pixel
     // F_u = 0.2, F_v = 0.4 (range 1, 0); ∂u = x̂, ∂v = ŷ, n = ẑ:
     // n + F_u(ẑ × ŷ) − F_v(ẑ × x̂) = (−0.2, −0.4, 1).
     ImageTextureOptions o = Planar();
     o.component = ImageComponent::Bump;
-    ImageTexture texture(Grey(1, {102, 0, 0, 51}), o);
+    ImageTexture texture(Grey(1, {0, 51, 102, 0}), o);
     Surface s = White();
     TextureContext ctx = At(0.25, 0.25);
     texture.Apply(ctx, s);
