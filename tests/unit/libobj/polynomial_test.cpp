@@ -169,5 +169,31 @@ TEST(Polynomial, RandomQuarticsRecoverTheirRoots) {
     }
 }
 
+TEST(AscendingRoots, YieldsRootsNearestFirst) {
+    // (x−1)(x−2)²(x−4) = x⁴ − 9x³ + 28x² − 36x + 16, ascending coefficients.
+    const double c[5] = {16, -36, 28, -9, 1};
+    AscendingRoots walker(c, 4, 0, 10);
+    double x;
+    ASSERT_TRUE(walker.Next(x));
+    EXPECT_NEAR(x, 1, 1e-12);
+    ASSERT_TRUE(walker.Next(x));
+    EXPECT_NEAR(x, 2, 1e-7);  // the double root, once
+    ASSERT_TRUE(walker.Next(x));
+    EXPECT_NEAR(x, 4, 1e-12);
+    EXPECT_FALSE(walker.Next(x));
+    EXPECT_FALSE(walker.Next(x));
+}
+
+TEST(AscendingRoots, RespectsTheInterval) {
+    const double c[5] = {16, -36, 28, -9, 1};
+    AscendingRoots walker(c, 4, 1.5, 3);
+    double x;
+    ASSERT_TRUE(walker.Next(x));
+    EXPECT_NEAR(x, 2, 1e-7);
+    EXPECT_FALSE(walker.Next(x));
+    AscendingRoots empty(c, 4, 5, 4);
+    EXPECT_FALSE(empty.Next(x));
+}
+
 }  // namespace
 }  // namespace rs
