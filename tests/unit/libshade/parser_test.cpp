@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "libcommon/error.h"
+#include "libshade/expression.h"
 #include "libsurf/surface.h"
 
 namespace rs {
@@ -492,7 +493,7 @@ TEST(ExampleScenes, BlobIsNotSupportedYet) {
         ParseScene(in, RenderOptions());
         FAIL() << "blob parsed";
     } catch (const FatalError& e) {
-        EXPECT_EQ(std::string(e.what()), in.path + ":11: The 'blob' primitive is not supported yet");
+        EXPECT_EQ(std::string(e.what()), in.path + ":12: The 'blob' primitive is not supported yet");
     }
 }
 
