@@ -27,7 +27,8 @@ double TokenArgReader::ReadNumber() {
     ExprPtr e = ReadExpression();
     // Spec §3.15: only transform parameters may vary with time.
     if (e->IsTimeVarying())
-        FailAt(where, usage_, "Illegal expression use: only transformation parameters may vary with time");
+        FailAt(where, usage_,
+               "Illegal expression use: only transformation parameters may vary with time");
     double v = e->Value();
     if (!std::isfinite(v)) FailAt(where, usage_, "Expression value is not a finite number");
     return v;

@@ -43,6 +43,7 @@ Expr::Expr(Op op, std::vector<ExprPtr> args) : op_(op), args_(std::move(args)) {
     for (const ExprPtr& a : args_) {
         timeVarying_ = timeVarying_ || a->IsTimeVarying();
         depth_ = std::max(depth_, a->depth_ + 1);
+        cost_ = std::min(cost_ + a->cost_, 1099511627776.0);
     }
 }
 
@@ -82,25 +83,39 @@ ExprPtr Expr::Call(Fn2 fn, ExprPtr a, ExprPtr b) {
 }
 
 ExprPtr Expr::Linear(ExprPtr t0, ExprPtr v0, ExprPtr t1, ExprPtr v1) {
-    return ExprPtr(new Expr(Op::Linear, {std::move(t0), std::move(v0), std::move(t1), std::move(v1)}));
+    return ExprPtr(
+        new Expr(Op::Linear, {std::move(t0), std::move(v0), std::move(t1), std::move(v1)}));
 }
 
 double Expr::Evaluate(double time) const {
     auto arg = [&](size_t i) { return args_[i]->Evaluate(time); };
     switch (op_) {
-        case Op::Constant: return value_;
-        case Op::Time: return time;
-        case Op::Frame: return CurrentFrame();
-        case Op::Negate: return -arg(0);
-        case Op::Add: return arg(0) + arg(1);
-        case Op::Subtract: return arg(0) - arg(1);
-        case Op::Multiply: return arg(0) * arg(1);
-        case Op::Divide: return arg(0) / arg(1);
-        case Op::Modulo: return ModuloC(arg(0), arg(1));
-        case Op::Power: return std::pow(arg(0), arg(1));
-        case Op::Call1: return fn1_(arg(0));
-        case Op::Call2: return fn2_(arg(0), arg(1));
-        case Op::Linear: return LinearAt(time, arg(0), arg(1), arg(2), arg(3));
+        case Op::Constant:
+            return value_;
+        case Op::Time:
+            return time;
+        case Op::Frame:
+            return CurrentFrame();
+        case Op::Negate:
+            return -arg(0);
+        case Op::Add:
+            return arg(0) + arg(1);
+        case Op::Subtract:
+            return arg(0) - arg(1);
+        case Op::Multiply:
+            return arg(0) * arg(1);
+        case Op::Divide:
+            return arg(0) / arg(1);
+        case Op::Modulo:
+            return ModuloC(arg(0), arg(1));
+        case Op::Power:
+            return std::pow(arg(0), arg(1));
+        case Op::Call1:
+            return fn1_(arg(0));
+        case Op::Call2:
+            return fn2_(arg(0), arg(1));
+        case Op::Linear:
+            return LinearAt(time, arg(0), arg(1), arg(2), arg(3));
     }
     return 0;
 }

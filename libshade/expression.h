@@ -17,11 +17,19 @@ using ExprPtr = std::shared_ptr<const Expr>;
 class Expr {
   public:
     enum class Op {
-        Constant, Time, Frame,
+        Constant,
+        Time,
+        Frame,
         Negate,
-        Add, Subtract, Multiply, Divide, Modulo, Power,
-        Call1, Call2,  // built-in functions of one or two arguments
-        Linear,        // linear(t0, v0, t1, v1)
+        Add,
+        Subtract,
+        Multiply,
+        Divide,
+        Modulo,
+        Power,
+        Call1,
+        Call2,   // built-in functions of one or two arguments
+        Linear,  // linear(t0, v0, t1, v1)
     };
     using Fn1 = double (*)(double);
     using Fn2 = double (*)(double, double);
@@ -43,6 +51,10 @@ class Expr {
     // Height of the tree (1 for a leaf); the parser bounds it so evaluation cannot exhaust
     // the stack.
     int Depth() const { return depth_; }
+    // Nodes visited by one evaluation (shared sub-trees counted at every use), saturated
+    // at 2^40; bounded by the parser so a chain of `define`s cannot make evaluation
+    // exponentially slow.
+    double Cost() const { return cost_; }
     // The value at ray time `time` and the frame set by SetCurrentFrame().
     double Evaluate(double time) const;
 
@@ -56,6 +68,7 @@ class Expr {
     Fn2 fn2_ = nullptr;
     double value_ = 0;
     int depth_ = 1;
+    double cost_ = 1;
     bool timeVarying_ = false;
 };
 

@@ -41,7 +41,8 @@ class ExpressionParser {
 
     void Expect(char c) {
         const Token& t = tokens_.Peek();
-        if (!t.IsChar(c)) Fail(t, std::string("Expected '") + c + "' in expression, found " + t.Describe());
+        if (!t.IsChar(c))
+            Fail(t, std::string("Expected '") + c + "' in expression, found " + t.Describe());
         tokens_.Next();
     }
 
@@ -56,7 +57,8 @@ class ExpressionParser {
     };
 
     ExprPtr Checked(ExprPtr e, const Token& at) {
-        if (e->Depth() > kMaxExprDepth) Fail(at, "Expression too complex");
+        if (e->Depth() > kMaxExprDepth || e->Cost() > kMaxExprCost)
+            Fail(at, "Expression too complex");
         return e;
     }
 
@@ -67,8 +69,8 @@ class ExpressionParser {
             if (!t.IsChar('+') && !t.IsChar('-')) return left;
             Token op = tokens_.Next();
             ExprPtr right = Product();
-            left = Checked(Expr::Binary(op.IsChar('+') ? Expr::Op::Add : Expr::Op::Subtract,
-                                        left, right), op);
+            left = Checked(
+                Expr::Binary(op.IsChar('+') ? Expr::Op::Add : Expr::Op::Subtract, left, right), op);
         }
     }
 
@@ -132,7 +134,9 @@ class ExpressionParser {
         Token name = tokens_.Next();
         const Symbol* s = symbols_.Find(name.text);
         bool call = tokens_.Peek().IsChar('(');
-        if (!s) Fail(name, "Undefined " + std::string(call ? "function" : "variable") + " '" + name.text + "'");
+        if (!s)
+            Fail(name, "Undefined " + std::string(call ? "function" : "variable") + " '" +
+                           name.text + "'");
         if (!call) {
             if (s->kind == Symbol::Kind::Function)
                 Fail(name, "'" + name.text + "' is a function; it needs arguments");

@@ -8,9 +8,11 @@
 namespace rs {
 
 // Limits that keep hostile input from exhausting the stack: parenthesis/unary nesting
-// while parsing, and the height of the resulting tree (evaluated recursively).
+// while parsing, the height of the resulting tree (evaluated recursively) and the number
+// of nodes one evaluation visits.
 inline constexpr int kMaxExprNesting = 200;
 inline constexpr int kMaxExprDepth = 2000;
+inline constexpr double kMaxExprCost = 1 << 20;
 
 // True when the next tokens start a numeric argument: NUMBER, ±NUMBER or '('.
 bool PeekExpression(TokenStream& tokens);
@@ -21,9 +23,11 @@ bool PeekExpression(TokenStream& tokens);
 // with precedence ^ (right) > unary ± > * / % > + -. Names resolve in `symbols`. Errors
 // (syntax, undefined names, misuse of functions, wrong argument counts) are reported with
 // the offending token's location; `usage`, when non-empty, is appended to messages.
-ExprPtr ParseExpression(TokenStream& tokens, const SymbolTable& symbols, const std::string& usage = "");
+ExprPtr ParseExpression(TokenStream& tokens, const SymbolTable& symbols,
+                        const std::string& usage = "");
 
 // Reports `message` at `where` (Abort), appending "(usage: ...)" when `usage` is non-empty.
-[[noreturn]] void FailAt(const SourceLocation& where, const std::string& usage, const std::string& message);
+[[noreturn]] void FailAt(const SourceLocation& where, const std::string& usage,
+                         const std::string& message);
 
 }  // namespace rs

@@ -14,20 +14,24 @@ const std::unordered_map<std::string, std::string>& KeywordTable() {
     static const std::unordered_map<std::string, std::string> table = [] {
         std::unordered_map<std::string, std::string> t;
         const char* words[] = {
-            "ambient", "aperture", "applysurf", "area", "atmosphere", "background", "blob",
-            "blotch", "body", "box", "bump", "checker", "cloud", "component", "cone",
-            "contrast", "crop", "cursurf", "cutoff", "cylinder", "cylindrical", "define",
-            "diffuse", "difference", "directional", "disc", "end", "extended", "extinct",
-            "eyep", "eyesep", "fbm", "fbmbump", "filter", "focaldist", "fog", "fogdeck",
-            "fov", "framelength", "frames", "gauss", "gloss", "grid", "heightfield", "image",
-            "index", "intersect", "jitter", "light", "list", "lookp", "map", "marble",
-            "maxdepth", "mist", "mount", "name", "nojitter", "noshadow", "object", "outfile",
-            "planar", "plane", "point", "poly", "print", "quiet", "range", "reflect",
-            "report", "rotate", "sample", "scale", "screen", "shadowtransp", "shutter",
-            "sky", "smooth", "specpow", "specular", "sphere", "spherical", "spot",
-            "starttime", "stripe", "surface", "textsurf", "texture", "tile", "torus",
-            "transform", "translate", "translu", "transp", "triangle", "triangleuv", "union",
-            "up", "uv", "verbose", "window", "windy", "wood"};
+            "ambient",     "aperture",    "applysurf",    "area",      "atmosphere", "background",
+            "blob",        "blotch",      "body",         "box",       "bump",       "checker",
+            "cloud",       "component",   "cone",         "contrast",  "crop",       "cursurf",
+            "cutoff",      "cylinder",    "cylindrical",  "define",    "diffuse",    "difference",
+            "directional", "disc",        "end",          "extended",  "extinct",    "eyep",
+            "eyesep",      "fbm",         "fbmbump",      "filter",    "focaldist",  "fog",
+            "fogdeck",     "fov",         "framelength",  "frames",    "gauss",      "gloss",
+            "grid",        "heightfield", "image",        "index",     "intersect",  "jitter",
+            "light",       "list",        "lookp",        "map",       "marble",     "maxdepth",
+            "mist",        "mount",       "name",         "nojitter",  "noshadow",   "object",
+            "outfile",     "planar",      "plane",        "point",     "poly",       "print",
+            "quiet",       "range",       "reflect",      "report",    "rotate",     "sample",
+            "scale",       "screen",      "shadowtransp", "shutter",   "sky",        "smooth",
+            "specpow",     "specular",    "sphere",       "spherical", "spot",       "starttime",
+            "stripe",      "surface",     "textsurf",     "texture",   "tile",       "torus",
+            "transform",   "translate",   "translu",      "transp",    "triangle",   "triangleuv",
+            "union",       "up",          "uv",           "verbose",   "window",     "windy",
+            "wood"};
         for (const char* w : words) t.emplace(w, w);
         t.emplace("polygon", "poly");
         t.emplace("reflective", "reflect");
@@ -55,13 +59,15 @@ std::string CanonicalKeyword(const std::string& word) {
 
 std::string Token::Describe() const {
     switch (kind) {
-        case TokenKind::End: return "end of input";
+        case TokenKind::End:
+            return "end of input";
         case TokenKind::Char: {
             unsigned char c = static_cast<unsigned char>(text[0]);
             if (c < 32 || c >= 127) return StringPrintf("character 0x%02x", c);
             return "'" + text + "'";
         }
-        default: return "'" + text + "'";
+        default:
+            return "'" + text + "'";
     }
 }
 

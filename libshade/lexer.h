@@ -31,7 +31,9 @@ struct Token {
     SourceLocation location;
 
     bool IsKeyword(const char* k) const { return kind == TokenKind::Keyword && keyword == k; }
-    bool IsChar(char c) const { return kind == TokenKind::Char && text.size() == 1 && text[0] == c; }
+    bool IsChar(char c) const {
+        return kind == TokenKind::Char && text.size() == 1 && text[0] == c;
+    }
     // A short description for messages: "'sphere'", "end of input".
     std::string Describe() const;
 };
@@ -64,7 +66,8 @@ class Lexer {
 // A lexer with arbitrary lookahead.
 class TokenStream {
   public:
-    TokenStream(std::string text, std::string fileName) : lexer_(std::move(text), std::move(fileName)) {}
+    TokenStream(std::string text, std::string fileName)
+        : lexer_(std::move(text), std::move(fileName)) {}
 
     // The k-th token ahead (0 = next), without consuming it.
     const Token& Peek(size_t k = 0);

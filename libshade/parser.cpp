@@ -27,8 +27,8 @@ constexpr int kMaxNodeDepth = HitRecord::kMaxPath - 1;
 bool IsSurfaceAttribute(const Token& t) {
     if (t.kind != TokenKind::Keyword) return false;
     static const char* const kAttributes[] = {"ambient", "diffuse", "specular", "specpow",
-                                              "body", "extinct", "transp", "reflect",
-                                              "index", "translu", "noshadow"};
+                                              "body",    "extinct", "transp",   "reflect",
+                                              "index",   "translu", "noshadow"};
     return std::any_of(std::begin(kAttributes), std::end(kAttributes),
                        [&](const char* a) { return t.keyword == a; });
 }
@@ -40,10 +40,11 @@ bool IsAggregateKeyword(const std::string& k) {
 // Keywords that are legal only outside aggregates (spec §2, parsing notes).
 bool IsTopLevelOnly(const std::string& k) {
     static const char* const kWords[] = {
-        "eyep", "lookp", "up", "fov", "aperture", "focaldist", "eyesep", "screen", "window",
-        "crop", "sample", "filter", "contrast", "cutoff", "maxdepth", "background",
-        "shadowtransp", "outfile", "report", "frames", "starttime", "framelength", "shutter",
-        "light", "atmosphere", "define", "print"};
+        "eyep",       "lookp",  "up",        "fov",         "aperture",     "focaldist",
+        "eyesep",     "screen", "window",    "crop",        "sample",       "filter",
+        "contrast",   "cutoff", "maxdepth",  "background",  "shadowtransp", "outfile",
+        "report",     "frames", "starttime", "framelength", "shutter",      "light",
+        "atmosphere", "define", "print"};
     return std::any_of(std::begin(kWords), std::end(kWords), [&](const char* w) { return k == w; });
 }
 
@@ -52,12 +53,16 @@ enum class TransformKind { Translate, Scale, Rotate, General };
 // The transform for already evaluated parameters, or nothing when they are invalid.
 std::optional<Transform> BuildTransform(TransformKind kind, const std::vector<double>& v) {
     switch (kind) {
-        case TransformKind::Translate: return Transform::Translate({v[0], v[1], v[2]});
-        case TransformKind::Scale: return Transform::Scale({v[0], v[1], v[2]});
-        case TransformKind::Rotate: return Transform::Rotate({v[0], v[1], v[2]}, v[3]);
+        case TransformKind::Translate:
+            return Transform::Translate({v[0], v[1], v[2]});
+        case TransformKind::Scale:
+            return Transform::Scale({v[0], v[1], v[2]});
+        case TransformKind::Rotate:
+            return Transform::Rotate({v[0], v[1], v[2]}, v[3]);
         case TransformKind::General: {
             Vec3 t = v.size() == 12 ? Vec3{v[9], v[10], v[11]} : Vec3{0, 0, 0};
-            return Transform::General({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, t);
+            return Transform::General({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]},
+                                      t);
         }
     }
     return std::nullopt;
@@ -87,7 +92,9 @@ class Parser final : public ParserServices {
 
   private:
     // A reader for the arguments of keyword token `kw`.
-    TokenArgReader Args(const Token& kw, const char* usage) { return TokenArgReader(*this, kw.location, usage); }
+    TokenArgReader Args(const Token& kw, const char* usage) {
+        return TokenArgReader(*this, kw.location, usage);
+    }
 
     void ParseTopLevelItem();
     // surface, applysurf, name or an instance; returns false when the next token starts
@@ -134,12 +141,11 @@ class Parser final : public ParserServices {
 
 Scene Parser::Parse() {
     while (tokens_.Peek().kind != TokenKind::End) ParseTopLevelItem();
-    SourceLocation end = tokens_.Peek().location;
-
     auto world = std::make_shared<ListAggregate>();
     for (auto& child : worldChildren_) world->AddChild(child);
     scene_.world = Object::MakeAggregate(world);
-    if (scene_.world->PrimitiveCount() == 0) Report(Severity::Abort, end, "Nothing to be rendered");
+    if (scene_.world->PrimitiveCount() == 0)
+        Report(Severity::Abort, SourceLocation{}, "Nothing to be rendered");
     return std::move(scene_);
 }
 
@@ -209,7 +215,8 @@ bool Parser::ParseCameraItem() {
         TokenArgReader args = Args(kw, "fov hfov [vfov]");
         cam.hfov = args.ReadNumber();
         if (args.PeekNumber()) cam.vfov = args.ReadNumber();
-        if (cam.hfov <= 0 || cam.hfov >= 180) args.Fail("The field of view must lie in (0, 180) degrees");
+        if (cam.hfov <= 0 || cam.hfov >= 180)
+            args.Fail("The field of view must lie in (0, 180) degrees");
     } else if (k == "aperture") {
         Token kw = tokens_.Next();
         cam.aperture = Args(kw, "aperture radius").ReadNumber();
@@ -347,8 +354,9 @@ Color Parser::ReadIntensity(TokenArgReader& args) {
 
 void Parser::ParseLight() {
     Token kw = tokens_.Next();
-    TokenArgReader args = Args(kw, "light intensity ambient | point | directional | extended | "
-                                   "spot | area ... [noshadow]");
+    TokenArgReader args = Args(kw,
+                               "light intensity ambient | point | directional | extended | "
+                               "spot | area ... [noshadow]");
     Color intensity = ReadIntensity(args);
     if (args.Accept("ambient")) {
         scene_.ambientLight = intensity;
@@ -415,8 +423,9 @@ void Parser::ParseAtmosphere() {
             e.scale = a.ReadNumber();
         } else if (t.IsKeyword("fogdeck")) {
             Token k = tokens_.Next();
-            TokenArgReader a = Args(k, "fogdeck altitude offset sx sy sz chaoscale octaves r g b "
-                                       "thinr thing thinb");
+            TokenArgReader a = Args(k,
+                                    "fogdeck altitude offset sx sy sz chaoscale octaves r g b "
+                                    "thinr thing thinb");
             e.kind = AtmosphereEffect::Kind::FogDeck;
             e.altitude = a.ReadNumber();
             e.offset = a.ReadNumber();
@@ -467,7 +476,8 @@ std::shared_ptr<const Surface> Parser::ParseSurface(const std::string& usage) {
     } else if (first.kind == TokenKind::Name) {
         tokens_.Next();
         auto it = surfaces_.find(first.text);
-        if (it == surfaces_.end()) FailAt(first.location, "", "Undefined surface '" + first.text + "'");
+        if (it == surfaces_.end())
+            FailAt(first.location, "", "Undefined surface '" + first.text + "'");
         if (!IsSurfaceAttribute(tokens_.Peek())) return it->second;
         base = *it->second;
     } else if (IsSurfaceAttribute(first)) {
@@ -483,15 +493,24 @@ std::shared_ptr<const Surface> Parser::ParseSurface(const std::string& usage) {
 void Parser::ParseSurfaceAttribute(TokenArgReader& args, Surface& s) {
     Token k = tokens_.Next();
     const std::string& a = k.keyword;
-    if (a == "ambient") s.ambient = args.ReadColor();
-    else if (a == "diffuse") s.diffuse = args.ReadColor();
-    else if (a == "specular") s.specular = args.ReadColor();
-    else if (a == "body") s.body = args.ReadColor();
-    else if (a == "specpow") s.specpow = args.ReadNumber();
-    else if (a == "extinct") s.extinct = args.ReadNumber();
-    else if (a == "transp") s.transp = args.ReadNumber();
-    else if (a == "reflect") s.reflect = args.ReadNumber();
-    else if (a == "index") s.index = args.ReadNumber();
+    if (a == "ambient")
+        s.ambient = args.ReadColor();
+    else if (a == "diffuse")
+        s.diffuse = args.ReadColor();
+    else if (a == "specular")
+        s.specular = args.ReadColor();
+    else if (a == "body")
+        s.body = args.ReadColor();
+    else if (a == "specpow")
+        s.specpow = args.ReadNumber();
+    else if (a == "extinct")
+        s.extinct = args.ReadNumber();
+    else if (a == "transp")
+        s.transp = args.ReadNumber();
+    else if (a == "reflect")
+        s.reflect = args.ReadNumber();
+    else if (a == "index")
+        s.index = args.ReadNumber();
     else if (a == "translu") {
         s.translucency = args.ReadNumber();
         s.translucentColor = args.ReadColor();
@@ -506,11 +525,13 @@ void Parser::ParseSurfaceDefinition() {
     const char* usage = "surface name [attributes]";
     TokenArgReader args = Args(kw, usage);
     std::string name = args.ReadName();
-    std::shared_ptr<const Surface> s =
-        PeekSurfaceStart() ? ParseSurface(usage) : std::make_shared<const Surface>(Surface::Fresh());
+    std::shared_ptr<const Surface> s = PeekSurfaceStart()
+                                           ? ParseSurface(usage)
+                                           : std::make_shared<const Surface>(Surface::Fresh());
     // Spec §3.5: checked for named surfaces only.
     if (s->transp > kEpsilon && s->index <= 0)
-        args.Fail("Surface '" + name + "' is transparent but its index of refraction is not positive");
+        args.Fail("Surface '" + name +
+                  "' is transparent but its index of refraction is not positive");
     if (surfaces_.count(name)) args.Warn("Redefinition of surface '" + name + "'");
     surfaces_[name] = s;
 }
@@ -560,7 +581,8 @@ std::shared_ptr<Object> Parser::ParsePrimitive() {
 std::shared_ptr<Object> Parser::ParseAggregate() {
     Token kw = tokens_.Next();
     const std::string& k = kw.keyword;
-    const char* usage = k == "grid" ? "grid nx ny nz {object} end" : "list|union|intersect|difference {object} end";
+    const char* usage =
+        k == "grid" ? "grid nx ny nz {object} end" : "list|union|intersect|difference {object} end";
     TokenArgReader args = Args(kw, usage);
     if (static_cast<int>(scopes_.size()) > kMaxModelDepth)
         args.Fail(StringPrintf("Model nesting too deep (the limit is %d levels)", kMaxModelDepth));
@@ -576,7 +598,8 @@ std::shared_ptr<Object> Parser::ParseAggregate() {
         if (t.kind == TokenKind::End) args.Fail("Missing 'end' for this '" + k + "'");
         if (t.kind == TokenKind::Keyword && IsTopLevelOnly(t.keyword))
             FailAt(t.location, "", "'" + t.text + "' is not allowed inside an aggregate");
-        if (!ParseScopedItem(children)) FailAt(t.location, "", "Expected an object or 'end', found " + t.Describe());
+        if (!ParseScopedItem(children))
+            FailAt(t.location, "", "Expected an object or 'end', found " + t.Describe());
     }
     tokens_.Next();
     scopes_.pop_back();
@@ -609,8 +632,8 @@ std::shared_ptr<Object> Parser::ParseAggregate() {
     }
     if (auto* csg = dynamic_cast<CsgAggregate*>(agg.get())) {
         if (!csg->HasTwoOperands()) {
-            args.Warn(StringPrintf("CSG '%s' needs exactly two operands, not %zu; discarded", k.c_str(),
-                                   children.size()));
+            args.Warn(StringPrintf("CSG '%s' needs exactly two operands, not %zu; discarded",
+                                   k.c_str(), children.size()));
             return nullptr;
         }
         for (auto& child : children) {
@@ -664,7 +687,8 @@ void Parser::ParseTransforms(TransformList& list) {
         } else if (t.IsKeyword("rotate")) {
             kind = TransformKind::Rotate, count = 4, usage = "rotate ax ay az degrees";
         } else if (t.IsKeyword("transform")) {
-            kind = TransformKind::General, count = 9, usage = "transform a b c d e f g h i [tx ty tz]";
+            kind = TransformKind::General, count = 9,
+            usage = "transform a b c d e f g h i [tx ty tz]";
         } else {
             return;
         }
@@ -689,7 +713,8 @@ void Parser::ParseTransforms(TransformList& list) {
         }
         std::vector<double> v;
         for (const ExprPtr& e : params) {
-            if (!std::isfinite(e->Value())) args.Fail("Transformation parameter is not a finite number");
+            if (!std::isfinite(e->Value()))
+                args.Fail("Transformation parameter is not a finite number");
             v.push_back(e->Value());
         }
         std::optional<Transform> step = BuildTransform(kind, v);
@@ -726,7 +751,11 @@ void Parser::SetDepth(const Object* node, NodeDepth d, const Token& at) {
         FailAt(at.location, "",
                StringPrintf("Model nesting too deep (the limit is %d levels)", kMaxModelDepth));
     }
-    depths_[node] = d;
+    // Primitives have the default depth; not storing them keeps the map small.
+    if (d.model == 0 && d.total == 1)
+        depths_.erase(node);
+    else
+        depths_[node] = d;
 }
 
 NodeDepth Parser::DepthOf(const Object* node) const {

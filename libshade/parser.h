@@ -12,7 +12,7 @@ namespace rs {
 struct ParseInput {
     std::string path;  // empty: standard input
     bool useCpp = true;
-    std::string cppArgs;  // the -P argument: extra words for cpp
+    std::string cppArgs;                    // the -P argument: extra words for cpp
     std::vector<std::string> extraDefines;  // NAME or NAME=VALUE, passed to cpp as -D...
 };
 

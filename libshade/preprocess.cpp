@@ -39,7 +39,8 @@ bool Drain(int fd, std::string& out) {
 
 std::string ReadRaw(const std::string& path) {
     int fd = path.empty() ? STDIN_FILENO : open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) Report(Severity::Abort, kNoLocation, "Cannot open %s: %s", path.c_str(), strerror(errno));
+    if (fd < 0)
+        Report(Severity::Abort, kNoLocation, "Cannot open %s: %s", path.c_str(), strerror(errno));
     std::string text;
     while (Drain(fd, text)) {
         if (text.size() > kMaxSceneBytes) {
@@ -100,8 +101,10 @@ std::string RunCpp(const std::vector<std::string>& args) {
             if (errno == EINTR) continue;
             break;
         }
-        if (outOpen && (fds[0].revents & (POLLIN | POLLHUP | POLLERR))) outOpen = Drain(outPipe[0], out);
-        if (errOpen && (fds[1].revents & (POLLIN | POLLHUP | POLLERR))) errOpen = Drain(errPipe[0], err);
+        if (outOpen && (fds[0].revents & (POLLIN | POLLHUP | POLLERR)))
+            outOpen = Drain(outPipe[0], out);
+        if (errOpen && (fds[1].revents & (POLLIN | POLLHUP | POLLERR)))
+            errOpen = Drain(errPipe[0], err);
         tooBig = out.size() > kMaxSceneBytes || err.size() > kMaxSceneBytes;
     }
     close(outPipe[0]);
@@ -111,7 +114,8 @@ std::string RunCpp(const std::vector<std::string>& args) {
     while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
     while (!err.empty() && err.back() == '\n') err.pop_back();
-    if (tooBig) Report(Severity::Abort, kNoLocation, "Scene input exceeds %zu bytes", kMaxSceneBytes);
+    if (tooBig)
+        Report(Severity::Abort, kNoLocation, "Scene input exceeds %zu bytes", kMaxSceneBytes);
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
         Report(Severity::Abort, kNoLocation, "The C preprocessor failed%s%s",
                err.empty() ? "" : ":\n", err.c_str());

@@ -23,7 +23,8 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry() {
         {"torus", Torus::Create, "torus [surface] rswept rtube cx cy cz nx ny nz"},
         {"triangle", Triangle::Create,
          "triangle [surface] p1 p2 p3  or  triangle [surface] p1 n1 p2 n2 p3 n3"},
-        {"triangleuv", Triangle::CreateUV, "triangleuv [surface] p1 n1 u1 v1 p2 n2 u2 v2 p3 n3 u3 v3"},
+        {"triangleuv", Triangle::CreateUV,
+         "triangleuv [surface] p1 n1 u1 v1 p2 n2 u2 v2 p3 n3 u3 v3"},
         {"poly", Polygon::Create, "poly [surface] x1 y1 z1 x2 y2 z2 x3 y3 z3 ..."},
     };
     return rows;

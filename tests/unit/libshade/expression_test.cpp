@@ -1,8 +1,9 @@
+#include "libshade/expression.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "libshade/expression.h"
 #include "libshade/expression_parser.h"
 #include "libshade/symtab.h"
 
@@ -53,7 +54,7 @@ TEST(Expression, Precedence) {
 
 TEST(Expression, ModuloHasCSemantics) {
     EXPECT_DOUBLE_EQ(Static("(-7 % 3)"), -1);
-    EXPECT_DOUBLE_EQ(Static("(7.9 % 3.9)"), 1);  // (int)7.9 % (int)3.9 = 7 % 3
+    EXPECT_DOUBLE_EQ(Static("(7.9 % 3.9)"), 1);    // (int)7.9 % (int)3.9 = 7 % 3
     EXPECT_TRUE(std::isnan(Static("(7 % 0.5)")));  // (int)0.5 = 0: no crash, NaN
 }
 
@@ -157,6 +158,22 @@ TEST(Expression, HostileNestingIsAnErrorNotACrash) {
     std::string tv = "(time";
     for (int i = 0; i < 50000; ++i) tv += "+time";
     EXPECT_EQ(ParseError(tv + ")"), "e.ray:1: Expression too complex");
+}
+
+TEST(Expression, SharedSubtreesCannotExplodeEvaluation) {
+    // Each definition uses the previous one twice: evaluation cost doubles per level.
+    SymbolTable symbols;
+    symbols.Define("v0", Parse("(time)", symbols));
+    std::string error;
+    for (int i = 1; i < 100 && error.empty(); ++i) {
+        TokenStream tokens(StringPrintf("(v%d + v%d)", i - 1, i - 1), "e.ray");
+        try {
+            symbols.Define(StringPrintf("v%d", i), ParseExpression(tokens, symbols));
+        } catch (const FatalError& e) {
+            error = e.what();
+        }
+    }
+    EXPECT_EQ(error, "e.ray:1: Expression too complex");
 }
 
 }  // namespace

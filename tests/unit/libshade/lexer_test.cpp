@@ -40,8 +40,8 @@ TEST(Lexer, NamesMayContainDashDotAndUnderscore) {
 TEST(Lexer, KeywordsAndSynonymsAreCanonical) {
     auto t = LexAll("sphere polygon reflective transparent translucency resolution samples sample");
     ASSERT_EQ(t.size(), 8u);
-    const char* expected[] = {"sphere", "poly", "reflect", "transp", "translu", "screen", "sample",
-                              "sample"};
+    const char* expected[] = {"sphere",  "poly",   "reflect", "transp",
+                              "translu", "screen", "sample",  "sample"};
     for (size_t i = 0; i < t.size(); ++i) {
         EXPECT_EQ(t[i].kind, TokenKind::Keyword);
         EXPECT_EQ(t[i].keyword, expected[i]);
@@ -72,7 +72,8 @@ TEST(Lexer, SignsAreSeparateTokens) {
 }
 
 TEST(Lexer, NumberOutOfRangeIsAnError) {
-    EXPECT_NE(LexError("sphere 1e999 0 0 0").find("t.ray:1: Number out of range"), std::string::npos);
+    EXPECT_NE(LexError("sphere 1e999 0 0 0").find("t.ray:1: Number out of range"),
+              std::string::npos);
 }
 
 TEST(Lexer, Filenames) {
@@ -107,8 +108,9 @@ TEST(Lexer, UnterminatedCommentIsAnError) {
 }
 
 TEST(Lexer, LineMarkersSetFileAndLine) {
-    auto t = LexAll("# 1 \"<stdin>\"\n# 10 \"scene.ray\" 1 3\na\nb\n#line 40 \"inc.ray\"\nc\n# 7\nd\n"
-                    "# 3 \"\"\ne");
+    auto t = LexAll(
+        "# 1 \"<stdin>\"\n# 10 \"scene.ray\" 1 3\na\nb\n#line 40 \"inc.ray\"\nc\n# 7\nd\n"
+        "# 3 \"\"\ne");
     ASSERT_EQ(t.size(), 5u);
     EXPECT_EQ(t[0].location.file, "scene.ray");
     EXPECT_EQ(t[0].location.line, 10);
@@ -122,7 +124,8 @@ TEST(Lexer, LineMarkersSetFileAndLine) {
 }
 
 TEST(Lexer, UnknownHashControlIsAnError) {
-    EXPECT_EQ(LexError("a\n#include \"x.ray\"\n"), "t.ray:2: Unknown '#' control: #include \"x.ray\"");
+    EXPECT_EQ(LexError("a\n#include \"x.ray\"\n"),
+              "t.ray:2: Unknown '#' control: #include \"x.ray\"");
 }
 
 TEST(Lexer, HashInsideALineIsACharacter) {

@@ -53,12 +53,13 @@ const std::vector<std::shared_ptr<Object>>& Top(const Scene& s) {
 const char* kBall = "sphere 1 0 0 0\n";
 
 TEST(Parser, CameraAndOptions) {
-    Scene s = Parse(std::string(kBall) +
-                    "eyep 1 2 3 lookp 4 5 6 up 0 1 0 fov 30 20 aperture 0.5 focaldist 7\n"
-                    "eyesep 0.25 screen 320 240 window 1 2 3 4 crop 0 .5 0 .5\n"
-                    "samples 4 nojitter filter gauss 2 contrast .1 .2 .3 cutoff .01\n"
-                    "maxdepth 7 background 0.5 0.25 1 outfile out.ppm report verbose quiet 3 st.txt\n"
-                    "frames 5 starttime -1 framelength 2 shutter 0.5\n");
+    Scene s =
+        Parse(std::string(kBall) +
+              "eyep 1 2 3 lookp 4 5 6 up 0 1 0 fov 30 20 aperture 0.5 focaldist 7\n"
+              "eyesep 0.25 screen 320 240 window 1 2 3 4 crop 0 .5 0 .5\n"
+              "samples 4 nojitter filter gauss 2 contrast .1 .2 .3 cutoff .01\n"
+              "maxdepth 7 background 0.5 0.25 1 outfile out.ppm report verbose quiet 3 st.txt\n"
+              "frames 5 starttime -1 framelength 2 shutter 0.5\n");
     EXPECT_EQ(s.camera.eye.x, 1);
     EXPECT_EQ(s.camera.eye.z, 3);
     EXPECT_EQ(s.camera.lookAt.y, 5);
@@ -112,11 +113,12 @@ TEST(Parser, CommandLineSettingsWinOverKeywords) {
     cli.statsFileSet = true;
     cli.eyeSepSet = true;
     CaptureDiagnostics diags;
-    Scene s = Parse(std::string(kBall) +
-                    "screen 320 240 sample 5 nojitter maxdepth 3 outfile x.ppm frames 9\n"
-                    "contrast .5 .5 .5 cutoff .5 window 1 2 3 4 crop 0 .5 0 .5 report 2 st.txt\n"
-                    "eyesep 3\n",
-                    cli);
+    Scene s =
+        Parse(std::string(kBall) +
+                  "screen 320 240 sample 5 nojitter maxdepth 3 outfile x.ppm frames 9\n"
+                  "contrast .5 .5 .5 cutoff .5 window 1 2 3 4 crop 0 .5 0 .5 report 2 st.txt\n"
+                  "eyesep 3\n",
+              cli);
     EXPECT_EQ(s.options.xres, 64);
     EXPECT_EQ(s.options.samples, 1);
     EXPECT_TRUE(s.options.jitter);
@@ -168,11 +170,12 @@ TEST(Parser, Atmosphere) {
 }
 
 TEST(Parser, NamedSurfacesAndModifiedCopies) {
-    Scene s = Parse("surface red diffuse 1 0 0\n"
-                    "sphere red 1 0 0 0\n"
-                    "sphere red specpow 3 1 0 0 0\n"
-                    "sphere ambient .5 .5 .5 1 0 0 0\n"
-                    "sphere 1 0 0 0\n");
+    Scene s = Parse(
+        "surface red diffuse 1 0 0\n"
+        "sphere red 1 0 0 0\n"
+        "sphere red specpow 3 1 0 0 0\n"
+        "sphere ambient .5 .5 .5 1 0 0 0\n"
+        "sphere 1 0 0 0\n");
     const auto& top = Top(s);
     ASSERT_EQ(top.size(), 4u);
     EXPECT_EQ(top[0]->surface->diffuse, Color(1, 0, 0));
@@ -185,16 +188,17 @@ TEST(Parser, NamedSurfacesAndModifiedCopies) {
 }
 
 TEST(Parser, ApplysurfScopes) {
-    Scene s = Parse("sphere 1 0 0 0\n"
-                    "applysurf diffuse 1 0 0\n"
-                    "sphere 1 0 0 0\n"
-                    "list\n"
-                    "  sphere 1 0 0 0\n"
-                    "  applysurf diffuse 0 1 0\n"
-                    "  sphere 1 0 0 0\n"
-                    "  sphere cursurf specpow 2 1 0 0 0\n"
-                    "end\n"
-                    "sphere cursurf 1 0 0 0\n");
+    Scene s = Parse(
+        "sphere 1 0 0 0\n"
+        "applysurf diffuse 1 0 0\n"
+        "sphere 1 0 0 0\n"
+        "list\n"
+        "  sphere 1 0 0 0\n"
+        "  applysurf diffuse 0 1 0\n"
+        "  sphere 1 0 0 0\n"
+        "  sphere cursurf specpow 2 1 0 0 0\n"
+        "end\n"
+        "sphere cursurf 1 0 0 0\n");
     const auto& top = Top(s);
     ASSERT_EQ(top.size(), 4u);
     EXPECT_EQ(top[0]->surface, nullptr);  // before applysurf
@@ -225,12 +229,13 @@ TEST(Parser, SurfaceRedefinitionWarnsAndShadows) {
 }
 
 TEST(Parser, NamedObjectsAndInstances) {
-    Scene s = Parse("surface shiny specpow 50\n"
-                    "name ball sphere 1 0 0 0 translate 1 0 0\n"
-                    "object ball translate 0 2 0\n"
-                    "object shiny ball\n"
-                    "name shiny sphere 2 0 0 0\n"  // object and surface names are separate
-                    "object shiny\n");
+    Scene s = Parse(
+        "surface shiny specpow 50\n"
+        "name ball sphere 1 0 0 0 translate 1 0 0\n"
+        "object ball translate 0 2 0\n"
+        "object shiny ball\n"
+        "name shiny sphere 2 0 0 0\n"  // object and surface names are separate
+        "object shiny\n");
     const auto& top = Top(s);
     ASSERT_EQ(top.size(), 3u);
     EXPECT_EQ(top[0]->kind(), Object::Kind::Instance);
@@ -247,8 +252,9 @@ TEST(Parser, NamedObjectsAndInstances) {
 }
 
 TEST(Parser, TransformsApplyInWrittenOrder) {
-    Scene s = Parse("sphere 1 0 0 0 translate 1 0 0 rotate 0 0 1 90 scale 2 2 2\n"
-                    "sphere 1 0 0 0 transform 0 1 0 -1 0 0 0 0 1 5 6 7\n");
+    Scene s = Parse(
+        "sphere 1 0 0 0 translate 1 0 0 rotate 0 0 1 90 scale 2 2 2\n"
+        "sphere 1 0 0 0 transform 0 1 0 -1 0 0 0 0 1 5 6 7\n");
     Vec3 p = Top(s)[0]->parentFromObject.Static().ApplyPoint({0, 0, 0});
     EXPECT_NEAR(p.x, 0, 1e-12);  // (1,0,0) → rotate → (0,1,0) → scale → (0,2,0)
     EXPECT_NEAR(p.y, 2, 1e-12);
@@ -259,9 +265,10 @@ TEST(Parser, TransformsApplyInWrittenOrder) {
 }
 
 TEST(Parser, AnimatedTransforms) {
-    Scene s = Parse("define spin (linear(0, 0, 10, 90))\n"
-                    "define k 2\n"
-                    "sphere 1 0 0 0 translate 1 0 0 rotate 0 0 1 (spin) translate (k) 0 (frame)\n");
+    Scene s = Parse(
+        "define spin (linear(0, 0, 10, 90))\n"
+        "define k 2\n"
+        "sphere 1 0 0 0 translate 1 0 0 rotate 0 0 1 (spin) translate (k) 0 (frame)\n");
     const Object& ball = *Top(s)[0];
     ASSERT_TRUE(ball.parentFromObject.IsAnimated());
     Vec3 at0 = ball.parentFromObject.At(0).ApplyPoint({0, 0, 0});
@@ -278,12 +285,15 @@ TEST(Parser, IllegalTimeVaryingUse) {
     EXPECT_EQ(ParseError("sphere (time) 0 0 0"),
               "t.ray:1: Illegal expression use: only transformation parameters may vary with time "
               "(usage: sphere [surface] radius cx cy cz)");
-    EXPECT_NE(ParseError("define t (frame)\nsphere 1 0 0 0\nscreen (t) 10").find("t.ray:3: Illegal expression use"),
+    EXPECT_NE(ParseError("define t (frame)\nsphere 1 0 0 0\nscreen (t) 10")
+                  .find("t.ray:3: Illegal expression use"),
               std::string::npos);
-    EXPECT_NE(ParseError("sphere 1 0 0 0\nlight (time) point 0 0 0").find("t.ray:2: Illegal expression use"),
+    EXPECT_NE(ParseError("sphere 1 0 0 0\nlight (time) point 0 0 0")
+                  .find("t.ray:2: Illegal expression use"),
               std::string::npos);
-    EXPECT_NE(ParseError("sphere diffuse (time) 0 0 1 0 0 0").find("t.ray:1: Illegal expression use"),
-              std::string::npos);
+    EXPECT_NE(
+        ParseError("sphere diffuse (time) 0 0 1 0 0 0").find("t.ray:1: Illegal expression use"),
+        std::string::npos);
 }
 
 TEST(Parser, DefineErrors) {
@@ -310,11 +320,14 @@ TEST(Parser, ErrorsCarryFileAndLine) {
         {"sphere 1 0 0\n", "t.ray:2: Expected a number or '(', found end of input"},
         {"sphere 1 0 0 0\n\nobject nothing", "t.ray:3: Undefined object 'nothing'"},
         {"sphere nosuch 1 0 0 0", "t.ray:1: Undefined surface 'nosuch'"},
-        {"list\nsphere 1 0 0 0\nlight 1 point 0 0 0\nend", "t.ray:3: 'light' is not allowed inside an aggregate"},
+        {"list\nsphere 1 0 0 0\nlight 1 point 0 0 0\nend",
+         "t.ray:3: 'light' is not allowed inside an aggregate"},
         {"sphere 1 0 0 0\nlist\nsphere 1 0 0 0\n", "t.ray:2: Missing 'end' for this 'list'"},
         {"sphere 1 0 0 0 scale 0 1 1", "t.ray:1: Singular matrix"},
-        {"sphere 1 0 0 0\nblob 0.5 1 1 0 0 0", "t.ray:2: The 'blob' primitive is not supported yet"},
-        {"sphere 1 0 0 0\nheightfield x.hf", "t.ray:2: The 'heightfield' primitive is not supported yet"},
+        {"sphere 1 0 0 0\nblob 0.5 1 1 0 0 0",
+         "t.ray:2: The 'blob' primitive is not supported yet"},
+        {"sphere 1 0 0 0\nheightfield x.hf",
+         "t.ray:2: The 'heightfield' primitive is not supported yet"},
         {"sphere 1 0 0 0\nsample 0", "t.ray:2: The sample count must be at least 1"},
         {"sphere 1 0 0 0\nscreen 0 10", "t.ray:2: Invalid screen resolution"},
         {"sphere 1 0 0 0\nreport 0", "t.ray:2: The report frequency must be at least 1"},
@@ -322,16 +335,19 @@ TEST(Parser, ErrorsCarryFileAndLine) {
         {"sphere 1 0 0 0\nlight 1 nowhere 0 0 0", "t.ray:2: Expected a light type"},
         {"sphere 1 0 0 0\nfilter triangle", "t.ray:2: Expected 'box' or 'gauss'"},
         {"define a 1\nsphere 1 0 0 0 translate (a-1) 0 0", "t.ray:2: Undefined variable 'a-1'"},
-        {"sphere 1 0 0 0 translate (1/0) 0 0", "t.ray:1: Transformation parameter is not a finite number"},
-        {"sphere 1 0 0 0\nsurface glassy transp 1 index 0", "t.ray:2: Surface 'glassy' is transparent"},
+        {"sphere 1 0 0 0 translate (1/0) 0 0",
+         "t.ray:1: Transformation parameter is not a finite number"},
+        {"sphere 1 0 0 0\nsurface glassy transp 1 index 0",
+         "t.ray:2: Surface 'glassy' is transparent"},
         {"sphere 1 0 0 0\n/* open", "t.ray:2: Unterminated comment"},
         {"sphere 1 0 0 0\n#pragma x", "t.ray:2: Unknown '#' control"},
         {"sphere 1 0 0 0\nlist end end", "t.ray:2: Unexpected 'end'"},
         {"sphere 1 0 0 0\nname 3 sphere 1 0 0 0", "t.ray:2: Expected a name, found '3'"},
         {"sphere 1 0 0 0\nscreen 1e10 1", "t.ray:2: Integer out of range"},
         {"sphere 1 0 0 0 texture", "t.ray:1: Unknown texture type end of input"},
-        {"", "t.ray:1: Nothing to be rendered"},
-        {"# 1 \"main.ray\"\nsphere 1 0 0 0\n# 1 \"inc.ray\" 1\n\nsphere 1 0 0", "inc.ray:2: Expected a number"},
+        {"", "Nothing to be rendered"},
+        {"# 1 \"main.ray\"\nsphere 1 0 0 0\n# 1 \"inc.ray\" 1\n\nsphere 1 0 0",
+         "inc.ray:2: Expected a number"},
     };
     for (const Case& c : cases) {
         std::string error = ParseError(c.text);
@@ -341,8 +357,9 @@ TEST(Parser, ErrorsCarryFileAndLine) {
 
 TEST(Parser, EmptyAndInvalidAggregatesAreDiscarded) {
     CaptureDiagnostics diags;
-    Scene s = Parse("list end\nunion sphere 1 0 0 0 end\ngrid 0 1 1 sphere 1 0 0 0 end\n"
-                    "name empty list end\nobject empty\nsphere 1 0 0 0\n");
+    Scene s = Parse(
+        "list end\nunion sphere 1 0 0 0 end\ngrid 0 1 1 sphere 1 0 0 0 end\n"
+        "name empty list end\nobject empty\nsphere 1 0 0 0\n");
     EXPECT_EQ(Top(s).size(), 1u);
     EXPECT_TRUE(diags.Has(Severity::Warn, "Null object defined"));
     EXPECT_TRUE(diags.Has(Severity::Warn, "needs exactly two operands"));
@@ -350,7 +367,7 @@ TEST(Parser, EmptyAndInvalidAggregatesAreDiscarded) {
 }
 
 TEST(Parser, NothingToBeRenderedWithOnlyDiscardedObjects) {
-    EXPECT_EQ(ParseError("light 1 point 0 0 0\nlist end\n"), "t.ray:3: Nothing to be rendered");
+    EXPECT_EQ(ParseError("light 1 point 0 0 0\nlist end\n"), "Nothing to be rendered");
 }
 
 TEST(Parser, ModelNestingLimit) {
@@ -374,7 +391,8 @@ TEST(Parser, ModelNestingLimit) {
     std::string instances = "name i0 sphere 1 0 0 0\n";
     for (int i = 1; i < 200; ++i)
         instances += "name i" + std::to_string(i) + " object i" + std::to_string(i - 1) + "\n";
-    EXPECT_NE(ParseError(instances + "object i199\n").find("Model nesting too deep"), std::string::npos);
+    EXPECT_NE(ParseError(instances + "object i199\n").find("Model nesting too deep"),
+              std::string::npos);
 }
 
 TEST(Parser, ObjectWithSurfaceNameFirst) {
@@ -493,7 +511,8 @@ TEST(ExampleScenes, BlobIsNotSupportedYet) {
         ParseScene(in, RenderOptions());
         FAIL() << "blob parsed";
     } catch (const FatalError& e) {
-        EXPECT_EQ(std::string(e.what()), in.path + ":12: The 'blob' primitive is not supported yet");
+        EXPECT_EQ(std::string(e.what()),
+                  in.path + ":12: The 'blob' primitive is not supported yet");
     }
 }
 
