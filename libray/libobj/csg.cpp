@@ -66,9 +66,14 @@ bool CsgAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitRecor
     a.Advance(tMin);
     b.Advance(tMin);
     while (a.valid() || b.valid()) {
-        // Visit the nearer pending hit; on a tie A goes first (coincident surfaces are the
-        // user's responsibility, spec §3.10).
-        const bool onA = a.valid() && (!b.valid() || a.t() <= b.t());
+        // Visit the nearer pending hit. Surfaces of A and B closer than ε along the ray are
+        // coincident (the user's responsibility, spec §3.10), and are ordered as the
+        // original orders exact ties, whatever the rounding of the two distances: A first
+        // for union and intersection, B first for difference (so a face of B lying on a
+        // face of A cuts A open there).
+        const bool onA =
+            a.valid() && (!b.valid() || (op_ == Op::Difference ? a.t() < b.t() - kEpsilon
+                                                               : a.t() <= b.t() + kEpsilon));
         OperandWalk& self = onA ? a : b;
         const OperandWalk& other = onA ? b : a;
         if (self.t() >= tMax) return false;
