@@ -181,24 +181,40 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha) {
             Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
         });
 
-        // 3. Contrast refinement until a pass changes nothing.
-        for (;;) {
-            std::vector<char> mark(pixels.size(), 0);
-            for (int y = 1; y < h; ++y)
-                for (int x = 1; x < w - 1; ++x)
-                    if (NeedsRefinement(pixels, x, y)) {
-                        mark[y * w + x] = mark[y * w + x - 1] = mark[y * w + x + 1] = 1;
-                        mark[(y - 1) * w + x] = mark[(y + 1) * w + x] = 1;
-                    }
+        // 3. Contrast refinement until a pass changes nothing. The first pass tests every
+        // interior pixel; later passes only the pixels whose five-pixel neighbourhood
+        // contains one that the previous pass supersampled (no other test can change).
+        std::vector<long> candidates;
+        for (int y = 1; y < h; ++y)
+            for (int x = 1; x < w - 1; ++x) candidates.push_back(static_cast<long>(y) * w + x);
+        std::vector<int> markedInPass(pixels.size(), 0), candidateInPass(pixels.size(), 0);
+        for (int pass = 1; !candidates.empty(); ++pass) {
             std::vector<long> todo;
-            for (size_t i = 0; i < pixels.size(); ++i)
-                if (mark[i] && !pixels[i].supersampled) todo.push_back(static_cast<long>(i));
-            if (todo.empty()) break;
+            for (long c : candidates) {
+                int x = static_cast<int>(c % w), y = static_cast<int>(c / w);
+                if (!NeedsRefinement(pixels, x, y)) continue;
+                for (long n : {c, c - 1, c + 1, c - w, c + w}) {
+                    if (pixels[n].supersampled || markedInPass[n] == pass) continue;
+                    markedInPass[n] = pass;
+                    todo.push_back(n);
+                }
+            }
+            std::sort(todo.begin(), todo.end());  // a fixed order whatever the candidates' order
             ParallelFor(static_cast<long>(todo.size()), [&](long i) {
                 long idx = todo[i];
                 Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
             });
             report(static_cast<long>(todo.size()) / 4);
+            candidates.clear();
+            for (long t : todo) {
+                for (long n : {t, t - 1, t + 1, t - w, t + w}) {
+                    if (n < 0 || n >= static_cast<long>(pixels.size())) continue;
+                    int x = static_cast<int>(n % w), y = static_cast<int>(n / w);
+                    if (x < 1 || x > w - 2 || y < 1 || y > h - 1 || candidateInPass[n] == pass) continue;
+                    candidateInPass[n] = pass;
+                    candidates.push_back(n);
+                }
+            }
         }
     }
     if (progress_) progress_(totalWork, totalWork);

@@ -1,7 +1,7 @@
 #include "rayshade/tracer.h"
 
 #include <cmath>
-#include <optional>
+#include <vector>
 
 #include "libcommon/constants.h"
 #include "libcommon/stats.h"
@@ -83,15 +83,24 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
                                       SampleState& sample) const {
     // Transforms along the path at the ray's time; path[0] is the primitive's node. Static
     // lists are referenced, animated ones evaluated into `animated`.
+    // (No default-constructed Transform arrays here: this runs for every shaded hit.)
     const Transform* nodeTransforms[HitRecord::kMaxPath];
-    std::optional<Transform> animated[HitRecord::kMaxPath];
+    std::vector<Transform> animated;
     Transform worldFromPrimitive;
     for (int i = 0; i < hit.pathLength; ++i) {
         const TransformList& list = hit.path[i]->parentFromObject;
-        nodeTransforms[i] = list.IsIdentity()    ? nullptr
-                            : list.IsAnimated() ? &animated[i].emplace(list.At(ray.time))
-                                                : &list.Static();
-        if (nodeTransforms[i]) worldFromPrimitive = worldFromPrimitive.Then(*nodeTransforms[i]);
+        if (list.IsIdentity()) {
+            nodeTransforms[i] = nullptr;
+            continue;
+        }
+        if (list.IsAnimated()) {
+            if (animated.empty()) animated.reserve(hit.pathLength);  // keeps pointers stable
+            animated.push_back(list.At(ray.time));
+            nodeTransforms[i] = &animated.back();
+        } else {
+            nodeTransforms[i] = &list.Static();
+        }
+        worldFromPrimitive = worldFromPrimitive.Then(*nodeTransforms[i]);
     }
     const Ray rayPrimitive = worldFromPrimitive.InverseRay(ray);
     const Vec3 pPrimitive = rayPrimitive.At(hit.t());

@@ -32,16 +32,16 @@ CounterId RegisterCounter(const std::string& name) {
     return static_cast<CounterId>(r.names.size() - 1);
 }
 
-uint64_t* detail::ThreadCounters() {
-    thread_local std::shared_ptr<std::array<uint64_t, kMaxCounters>> mine = [] {
-        auto a = std::make_shared<std::array<uint64_t, kMaxCounters>>();
-        a->fill(0);
-        Registry& r = TheRegistry();
-        std::lock_guard<std::mutex> lock(r.mutex);
-        r.threadArrays.push_back(a);
-        return a;
-    }();
-    return mine->data();
+uint64_t* detail::RegisterThreadCounters() {
+    // The registry keeps the array alive after the thread ends, so its counts still appear
+    // in StatsSnapshot().
+    auto a = std::make_shared<std::array<uint64_t, kMaxCounters>>();
+    a->fill(0);
+    Registry& r = TheRegistry();
+    std::lock_guard<std::mutex> lock(r.mutex);
+    r.threadArrays.push_back(a);
+    threadCounters = a->data();
+    return threadCounters;
 }
 
 std::vector<CounterValue> StatsSnapshot() {

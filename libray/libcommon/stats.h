@@ -17,10 +17,17 @@ CounterId RegisterCounter(const std::string& name);
 
 namespace detail {
 inline constexpr int kMaxCounters = 1024;
-uint64_t* ThreadCounters();
+// This thread's counter array, or null before its first count. A constant-initialised
+// thread_local pointer costs one TLS load per count, with no initialisation guard.
+inline thread_local uint64_t* threadCounters = nullptr;
+uint64_t* RegisterThreadCounters();
 }  // namespace detail
 
-inline void Count(CounterId id, uint64_t n = 1) { detail::ThreadCounters()[id] += n; }
+inline void Count(CounterId id, uint64_t n = 1) {
+    uint64_t* counters = detail::threadCounters;
+    if (!counters) counters = detail::RegisterThreadCounters();
+    counters[id] += n;
+}
 
 struct CounterValue {
     std::string name;

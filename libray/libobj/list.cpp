@@ -1,32 +1,48 @@
 #include "libobj/list.h"
 
+#include "libcommon/constants.h"
 #include "libobj/object.h"
 
 namespace rs {
 
 bool ListAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const {
     bool found = false;
-    for (const auto& child : children_) {
-        if (!child->IsBounded() && child->Intersect(ray, tMin, tMax, hit)) found = true;
-    }
+    for (const Object* child : unbounded_)
+        if (child->Intersect(ray, tMin, tMax, hit)) found = true;
     if (!hasBounded_) return found;
+    if (!hierarchy_.IsEmpty()) {
+        return hierarchy_.Traverse(ray, tMin, tMax, [&](int i) {
+                   return bounded_[i]->Intersect(ray, tMin, tMax, hit);
+               }) || found;
+    }
     // The box test uses tMax as shrunk by the unbounded children.
     double t0 = tMin, t1 = tMax;
     if (!bounds_.ClipRay(ray, t0, t1)) return found;
-    for (const auto& child : children_) {
-        if (child->IsBounded() && child->Intersect(ray, tMin, tMax, hit)) found = true;
-    }
+    for (const Object* child : bounded_)
+        if (child->Intersect(ray, tMin, tMax, hit)) found = true;
     return found;
 }
 
 void ListAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     bounds_ = Bounds3{};
-    hasBounded_ = false;
+    unbounded_.clear();
+    bounded_.clear();
+    std::vector<Bounds3> boxes;
     for (const auto& child : children_) {
-        if (!child->IsBounded()) continue;
+        if (!child->IsBounded()) {
+            unbounded_.push_back(child.get());
+            continue;
+        }
+        bounded_.push_back(child.get());
+        // Padded so flat children (polygons, discs) keep boxes of non-zero thickness.
+        boxes.push_back(child->BoundsInParent().Padded(kEpsilon));
         bounds_.Extend(child->BoundsInParent());
-        hasBounded_ = true;
     }
+    hasBounded_ = !bounded_.empty();
+    if (bounded_.size() > kHierarchyThreshold)
+        hierarchy_.Build(boxes);
+    else
+        hierarchy_ = BoundingVolumeHierarchy{};
 }
 
 }  // namespace rs

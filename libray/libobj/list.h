@@ -1,7 +1,12 @@
-// `list … end` (spec §3.10): every child is tested and the nearest hit kept.
+// `list … end` (spec §3.10): the nearest hit among the children. The original tests every
+// child; with more than a few bounded children we test only those whose boxes the ray
+// segment meets, through a bounding volume hierarchy, which finds the same nearest hit.
 #pragma once
 
+#include <vector>
+
 #include "libobj/aggregate.h"
+#include "libobj/bvh.h"
 
 namespace rs {
 
@@ -23,8 +28,13 @@ class ListAggregate final : public Aggregate {
     void PrepareFrame(double frameTime, double shutter) override;
 
   private:
+    // Below this many bounded children a linear loop beats the hierarchy's overhead.
+    static constexpr size_t kHierarchyThreshold = 4;
+
     Bounds3 bounds_;
     bool hasBounded_ = false;
+    std::vector<const Object*> unbounded_, bounded_;
+    BoundingVolumeHierarchy hierarchy_;  // over bounded_, when there are enough
 };
 
 }  // namespace rs

@@ -29,10 +29,11 @@ std::shared_ptr<Object> Object::MakeInstance(std::shared_ptr<Object> of) {
 }
 
 bool Object::Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const {
-    Transform storage;
-    const Ray ray = parentFromObject.IsIdentity()
-                        ? rayParent
-                        : parentFromObject.AtTime(rayParent.time, storage).InverseRay(rayParent);
+    Ray ray = rayParent;
+    if (!parentFromObject.IsIdentity())
+        ray = parentFromObject.IsAnimated()
+                  ? parentFromObject.At(rayParent.time).InverseRay(rayParent)
+                  : parentFromObject.Static().InverseRay(rayParent);
     bool found = false;
     switch (kind_) {
         case Kind::Primitive: {

@@ -1,0 +1,84 @@
+// A bounding volume hierarchy over a set of boxes, used by `list` to test only the children
+// a ray can reach. The original tests every child of a list; the nearest hit is the same,
+// because every child whose box meets the remaining ray segment is still tested.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "libcommon/bounds.h"
+
+namespace rs {
+
+class BoundingVolumeHierarchy {
+  public:
+    // Builds over `boxes` (item i has box boxes[i]); splits at the median centroid of the
+    // widest axis until at most kLeafSize items remain.
+    void Build(const std::vector<Bounds3>& boxes);
+    bool IsEmpty() const { return nodes_.empty(); }
+
+    // Calls visit(i) for every item whose box meets the ray segment (tMin, tMax), nearer
+    // subtrees first. visit returns true when it found a hit, and may then have shrunk tMax;
+    // later boxes are clipped against the shrunken segment. Returns whether any visit hit.
+    template <class Visit>
+    bool Traverse(const Ray& ray, double tMin, double& tMax, Visit&& visit) const {
+        if (nodes_.empty()) return false;
+        const Vec3 invDir{1 / ray.dir.x, 1 / ray.dir.y, 1 / ray.dir.z};
+        const bool negative[3] = {invDir.x < 0, invDir.y < 0, invDir.z < 0};
+        int stack[64];
+        int top = 0;
+        stack[top++] = 0;
+        bool found = false;
+        while (top > 0) {
+            const Node& node = nodes_[stack[--top]];
+            if (!Overlaps(node.box, ray, invDir, tMin, tMax)) continue;
+            if (node.count > 0) {
+                for (int i = 0; i < node.count; ++i)
+                    if (visit(items_[node.first + i])) found = true;
+                continue;
+            }
+            // Push the far child first so the near one is visited next.
+            int nearChild = static_cast<int>(&node - nodes_.data()) + 1, farChild = node.right;
+            if (negative[node.axis]) std::swap(nearChild, farChild);
+            if (top + 2 > 64) {
+                // Deeper than any tree Build makes (it halves the items each level); visit
+                // the rest linearly rather than overflow.
+                for (int item : items_) if (visit(item)) found = true;
+                return found;
+            }
+            stack[top++] = farChild;
+            stack[top++] = nearChild;
+        }
+        return found;
+    }
+
+  private:
+    static constexpr int kLeafSize = 2;
+    struct Node {
+        Bounds3 box;
+        int first = 0, count = 0;  // leaf: items_[first, first + count)
+        int right = 0;             // interior: right child index (left child follows)
+        int axis = 0;
+    };
+
+    // Slab test of the segment (tMin, tMax) against `box`, with IEEE infinities for
+    // axis-parallel directions; NaN (0·∞ on a slab plane) leaves the range alone.
+    static bool Overlaps(const Bounds3& box, const Ray& ray, const Vec3& invDir, double tMin,
+                         double tMax) {
+        for (int a = 0; a < 3; ++a) {
+            double t0 = (box.lo[a] - ray.origin[a]) * invDir[a];
+            double t1 = (box.hi[a] - ray.origin[a]) * invDir[a];
+            if (t0 > t1) std::swap(t0, t1);
+            if (t0 > tMin) tMin = t0;
+            if (t1 < tMax) tMax = t1;
+            if (tMin > tMax) return false;
+        }
+        return true;
+    }
+    int BuildNode(std::vector<int>& items, int begin, int end, const std::vector<Bounds3>& boxes);
+
+    std::vector<Node> nodes_;
+    std::vector<int> items_;
+};
+
+}  // namespace rs
