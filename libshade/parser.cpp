@@ -564,7 +564,14 @@ std::shared_ptr<Object> Parser::ParsePrimitive() {
     const PrimitiveEntry* row = FindPrimitive(kw.keyword);
     if (!row) FailAt(kw.location, "", "The '" + kw.keyword + "' primitive is not supported yet");
     std::shared_ptr<const Surface> surface;
-    if (PeekSurfaceStart()) surface = ParseSurface(row->usage);
+    bool surfaceFollows = PeekSurfaceStart();
+    // heightfield's own argument is a file name, which may lex as a NAME too: a NAME is the
+    // surface only when another file name follows it (as the original's grammar decides).
+    if (surfaceFollows && kw.keyword == "heightfield" && tokens_.Peek().kind == TokenKind::Name) {
+        TokenKind after = tokens_.Peek(1).kind;
+        surfaceFollows = after == TokenKind::Name || after == TokenKind::Filename;
+    }
+    if (surfaceFollows) surface = ParseSurface(row->usage);
     TokenArgReader args(*this, kw.location, row->usage);
     std::shared_ptr<Primitive> prim = row->create(args);
     if (!prim) return nullptr;  // degenerate: the factory has warned

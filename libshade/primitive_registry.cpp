@@ -1,9 +1,11 @@
 #include "libshade/primitive_registry.h"
 
+#include "libobj/blob.h"
 #include "libobj/box.h"
 #include "libobj/cone.h"
 #include "libobj/cylinder.h"
 #include "libobj/disc.h"
+#include "libobj/heightfield.h"
 #include "libobj/plane.h"
 #include "libobj/polygon.h"
 #include "libobj/sphere.h"
@@ -26,6 +28,8 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry() {
         {"triangleuv", Triangle::CreateUV,
          "triangleuv [surface] p1 n1 u1 v1 p2 n2 u2 v2 p3 n3 u3 v3"},
         {"poly", Polygon::Create, "poly [surface] x1 y1 z1 x2 y2 z2 x3 y3 z3 ..."},
+        {"blob", Blob::Create, "blob [surface] threshold strength radius cx cy cz [strength radius cx cy cz ...]"},
+        {"heightfield", HeightField::Create, "heightfield [surface] file"},
     };
     return rows;
 }
@@ -37,7 +41,7 @@ const PrimitiveEntry* FindPrimitive(const std::string& keyword) {
 }
 
 bool IsPrimitiveKeyword(const std::string& keyword) {
-    return FindPrimitive(keyword) != nullptr || keyword == "blob" || keyword == "heightfield";
+    return FindPrimitive(keyword) != nullptr;
 }
 
 }  // namespace rs

@@ -110,7 +110,11 @@ std::optional<Image> ReadImage(const std::string& path, std::string& error) {
         error = path + ": cannot seek: " + std::strerror(errno);
         return std::nullopt;
     }
-    if (got == kPngSignatureSize && png_sig_cmp(signature, 0, kPngSignatureSize) == 0) {
+    if (png_sig_cmp(signature, 0, got) == 0) {
+        if (got < kPngSignatureSize) {
+            error = path + ": truncated PNG (the file ends inside the signature)";
+            return std::nullopt;
+        }
         return DecodePng(file.get(), path, error);
     }
     return DecodeMtv(file.get(), path, error);

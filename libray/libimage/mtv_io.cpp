@@ -38,6 +38,14 @@ bool ParseHeader(const std::string& line, int64_t& width, int64_t& height) {
     return i == line.size();
 }
 
+// `text` with every byte outside printable ASCII shown as '?', for error messages.
+std::string Printable(std::string text) {
+    for (char& c : text) {
+        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    }
+    return text;
+}
+
 }  // namespace
 
 std::optional<Image> DecodeMtv(std::FILE* file, const std::string& path, std::string& error) {
@@ -53,7 +61,8 @@ std::optional<Image> DecodeMtv(std::FILE* file, const std::string& path, std::st
     }
     int64_t width = 0, height = 0;
     if (!ParseHeader(line, width, height)) {
-        error = path + ": neither a PNG nor an mtv image (bad header \"" + line + "\")";
+        error = path + ": neither a PNG nor an mtv image (bad header \"" + Printable(line) +
+                "\")";
         return std::nullopt;
     }
     if (width < 1 || height < 1 || width * height > kMaxImagePixels) {

@@ -29,9 +29,10 @@ std::shared_ptr<Object> Object::MakeInstance(std::shared_ptr<Object> of) {
 }
 
 bool Object::Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const {
+    Transform storage;
     const Ray ray = parentFromObject.IsIdentity()
                         ? rayParent
-                        : parentFromObject.At(rayParent.time).InverseRay(rayParent);
+                        : parentFromObject.AtTime(rayParent.time, storage).InverseRay(rayParent);
     bool found = false;
     switch (kind_) {
         case Kind::Primitive: {

@@ -86,13 +86,6 @@ double RefineRoot(const double* c, int degree, double left, double right, double
     return x;
 }
 
-// Appends x unless it repeats the previous root or the degree's count is already reached
-// (values all within tolerance of zero could otherwise report more roots than exist).
-void AppendRoot(double x, int degree, double* roots, int& n) {
-    if (n >= degree || (n > 0 && roots[n - 1] == x)) return;
-    roots[n++] = x;
-}
-
 }  // namespace
 
 double EvaluatePolynomial(const double* c, int degree, double x) {
@@ -101,54 +94,101 @@ double EvaluatePolynomial(const double* c, int degree, double x) {
     return f;
 }
 
+AscendingRoots::AscendingRoots(const double* coeffs, int degree, double lo, double hi) {
+    degree = std::min(degree, 4);
+    while (degree > 0 && coeffs[degree] == 0) --degree;
+    // Level k is the k-th derivative; the chain stops at the first of degree ≤ 2.
+    Level& top = levels_[0];
+    top.degree = std::max(degree, 0);
+    for (int i = 0; i <= top.degree; ++i) top.c[i] = coeffs[i];
+    nLevels_ = 1;
+    while (levels_[nLevels_ - 1].degree > 2) {
+        const Level& parent = levels_[nLevels_ - 1];
+        Level& child = levels_[nLevels_++];
+        child.degree = parent.degree - 1;
+        for (int i = 0; i <= child.degree; ++i) child.c[i] = (i + 1) * parent.c[i + 1];
+    }
+    for (int k = 0; k < nLevels_; ++k) Start(levels_[k], lo, hi);
+}
+
+void AscendingRoots::Start(Level& level, double lo, double hi) {
+    level.hi = hi;
+    level.nClosed = level.iClosed = 0;
+    level.done = !(lo <= hi);
+    if (level.done) return;
+    if (level.degree <= 2) {
+        double r[2];
+        int m = 0;
+        if (level.degree == 1) {
+            r[m++] = -level.c[0] / level.c[1];
+        } else if (level.degree == 2) {
+            m = QuadraticRoots(level.c[2], level.c[1], level.c[0], r);
+        }
+        for (int i = 0; i < m; ++i) {
+            if (r[i] >= lo && r[i] <= hi) level.closed[level.nClosed++] = r[i];
+        }
+        return;
+    }
+    level.x0 = lo;
+    level.v0 = ZeroedValue(level, lo);
+    level.pendingZero = level.v0 == 0;
+}
+
+double AscendingRoots::ZeroedValue(const Level& level, double x) {
+    const double f = EvaluatePolynomial(level.c, level.degree, x);
+    return std::fabs(f) <= kZeroTolerance * EvaluationScale(level.c, level.degree, x) ? 0 : f;
+}
+
+bool AscendingRoots::Next(int k, double& root) {
+    if (k >= nLevels_ || k >= kMaxLevels) return false;
+    Level& level = levels_[k];
+    if (level.degree <= 2) {
+        if (level.iClosed >= level.nClosed) return false;
+        root = level.closed[level.iClosed++];
+        return true;
+    }
+    for (;;) {
+        // A break whose value is within rounding error of zero is a root (a multiple one
+        // at an interior critical point) and counts as an exact zero for sign changes.
+        if (level.pendingZero) {
+            level.pendingZero = false;
+            root = level.x0;
+            return true;
+        }
+        if (level.done) return false;
+        // The next break: the derivative's next root beyond x0, or the interval's end. The
+        // polynomial is monotonic between consecutive breaks, so each piece holds at most
+        // one root, present exactly when the end values change sign.
+        double x1 = level.hi, critical;
+        while (Next(k + 1, critical)) {
+            if (critical > level.x0) {
+                x1 = std::min(critical, level.hi);
+                break;
+            }
+        }
+        if (x1 >= level.hi) level.done = true;
+        const double v0 = level.v0, v1 = ZeroedValue(level, x1);
+        const bool signChange = (v0 < 0 && v1 > 0) || (v0 > 0 && v1 < 0);
+        const double x0 = level.x0;
+        level.x0 = x1;
+        level.v0 = v1;
+        level.pendingZero = v1 == 0 && x1 > x0;
+        if (signChange) {
+            root = RefineRoot(level.c, level.degree, x0, x1, v0, v1);
+            return true;
+        }
+    }
+}
+
 int SolvePolynomialInInterval(const double* c, int degree, double lo, double hi,
                               double* roots) {
-    while (degree > 0 && c[degree] == 0) --degree;
-    if (degree <= 0 || !(lo <= hi)) return 0;
-    if (degree == 1) {
-        double x = -c[0] / c[1];
-        if (!(x >= lo && x <= hi)) return 0;
-        roots[0] = x;
-        return 1;
-    }
-    if (degree == 2) {
-        double r[2];
-        int m = QuadraticRoots(c[2], c[1], c[0], r), n = 0;
-        for (int i = 0; i < m; ++i) {
-            if (r[i] >= lo && r[i] <= hi) roots[n++] = r[i];
-        }
-        return n;
-    }
-
-    // Critical points split [lo, hi] into pieces on which p is monotonic.
-    double derivative[4];
-    for (int i = 0; i < degree; ++i) derivative[i] = (i + 1) * c[i + 1];
-    double breaks[5];
-    int nBreaks = 0;
-    breaks[nBreaks++] = lo;
-    double critical[3];
-    int nCritical = SolvePolynomialInInterval(derivative, degree - 1, lo, hi, critical);
-    for (int i = 0; i < nCritical; ++i) {
-        if (critical[i] > breaks[nBreaks - 1] && critical[i] < hi) breaks[nBreaks++] = critical[i];
-    }
-    if (hi > lo) breaks[nBreaks++] = hi;
-
-    // Values at the breaks; those within rounding error of zero are roots (multiple ones at
-    // interior critical points) and count as exact zeros when looking for sign changes.
-    double values[5];
-    for (int k = 0; k < nBreaks; ++k) {
-        double f = EvaluatePolynomial(c, degree, breaks[k]);
-        if (std::fabs(f) <= kZeroTolerance * EvaluationScale(c, degree, breaks[k])) f = 0;
-        values[k] = f;
-    }
+    AscendingRoots walker(c, degree, lo, hi);
     int n = 0;
-    for (int k = 0; k < nBreaks; ++k) {
-        if (values[k] == 0) AppendRoot(breaks[k], degree, roots, n);
-        if (k + 1 < nBreaks && ((values[k] < 0 && values[k + 1] > 0) ||
-                                (values[k] > 0 && values[k + 1] < 0))) {
-            AppendRoot(RefineRoot(c, degree, breaks[k], breaks[k + 1], values[k], values[k + 1]),
-                       degree, roots, n);
-        }
+    double x;
+    // A degree-n polynomial has at most n roots; values all within tolerance of zero could
+    // otherwise yield more.
+    while (n < std::max(degree, 0) && walker.Next(x)) {
+        if (n == 0 || x != roots[n - 1]) roots[n++] = x;
     }
     return n;
 }

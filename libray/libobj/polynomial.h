@@ -39,6 +39,41 @@ int SolveQuartic(double a, double b, double c, double d, double e, double roots[
 int SolvePolynomialInInterval(const double* coeffs, int degree, double lo, double hi,
                               double* roots);
 
+// The distinct real roots of Σ coeffs[i]·x^i (ascending powers, degree ≤ 4) in [lo, hi],
+// produced one at a time in ascending order and computed only as far as they are asked
+// for: a ray that wants the nearest root beyond some distance stops after it. Holds
+// copies of the coefficients; no allocation.
+class AscendingRoots {
+  public:
+    AscendingRoots(const double* coeffs, int degree, double lo, double hi);
+    // The next larger root; false when there are no more.
+    bool Next(double& root) { return Next(0, root); }
+
+  private:
+    // One polynomial of the derivative chain with its walk state.
+    struct Level {
+        double c[5] = {};
+        int degree = 0;
+        double hi = 0;
+        bool done = true;
+        // Degree ≤ 2: the closed-form roots in [lo, hi] and the next one to hand out.
+        double closed[2] = {};
+        int nClosed = 0, iClosed = 0;
+        // Degree ≥ 3: the last break reached and p there (0 when within rounding error),
+        // and whether that zero still has to be reported as a root.
+        double x0 = 0, v0 = 0;
+        bool pendingZero = false;
+    };
+
+    static void Start(Level& level, double lo, double hi);
+    static double ZeroedValue(const Level& level, double x);
+    bool Next(int level, double& root);
+
+    static constexpr int kMaxLevels = 3;  // p, p′, p″: a quartic's chain ends at p″
+    Level levels_[kMaxLevels];
+    int nLevels_ = 0;
+};
+
 // Σ coeffs[i]·x^i by Horner's rule.
 double EvaluatePolynomial(const double* coeffs, int degree, double x);
 

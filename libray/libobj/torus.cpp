@@ -79,11 +79,13 @@ bool Torus::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hi
     const double coeffs[5] = {k * k + 4 * r2 * (p.z * p.z - tubeRadius_ * tubeRadius_),
                               4 * g * k + 8 * r2 * p.z * e.z,
                               4 * g * g + 2 * k + 4 * r2 * e.z * e.z, 4 * g, 1};
-    double roots[4];
-    const int n = SolvePolynomialInInterval(coeffs, 4, 0, (tEnd - tStart) * length, roots);
-    for (int i = 0; i < n; ++i) {
-        const double t = tStart + roots[i] / length;
-        if (t > tMin && t < tMax) {
+    // Roots come nearest first and only as many as needed are computed.
+    AscendingRoots roots(coeffs, 4, 0, (tEnd - tStart) * length);
+    double sigma;
+    while (roots.Next(sigma)) {
+        const double t = tStart + sigma / length;
+        if (t >= tMax) return false;
+        if (t > tMin) {
             hit.t = t;
             return true;
         }

@@ -49,19 +49,24 @@ class Triangle final : public Primitive {
     SurfaceUV UV(const Vec3& p, const Vec3& facingNormal, const PrimitiveHit& hit) const override;
 
   private:
-    enum class Kind { Flat, Phong, PhongUV };
+    // The Phong forms; uv is null for `triangle p n p n p n`.
+    Triangle(const Points& p, const Points& normals, const UVs* uv, bool flip);
 
-    Triangle(Kind kind, const Points& p, bool flip);
+    // Vertex normals and texture coordinates of the Phong forms, kept apart so flat
+    // triangles stay small and the data Intersect reads stays together.
+    struct Shading {
+        Points normals;  // unit, already flipped
+        bool hasUV = false;
+        UVs uv;
+        Vec3 dpdu, dpdv;
+    };
 
-    Kind kind_;
-    Points p_;
-    Vec3 normal_;  // unit geometric normal N
-    // Dual basis of the edges e2 = p2 − p1, e3 = p3 − p1 in the triangle's plane: for X in
-    // the plane, b2 = (X − p1)·dual2_ and b3 = (X − p1)·dual3_.
-    Vec3 dual2_, dual3_;
-    Points vertexNormals_;
-    UVs uv_;
-    Vec3 dpdu_, dpdv_;  // PhongUV only
+    // Intersection data first: p1, N and the dual basis of the edges e2 = p2 − p1,
+    // e3 = p3 − p1 in the plane (for X in the plane, b2 = (X − p1)·dual2_ and
+    // b3 = (X − p1)·dual3_).
+    Vec3 p1_, normal_, dual2_, dual3_;
+    Vec3 p2_, p3_;
+    std::unique_ptr<const Shading> shading_;  // null for flat triangles
 };
 
 }  // namespace rs

@@ -132,8 +132,10 @@ std::shared_ptr<Texture> ImageTexture::Create(ArgReader& args) {
 ImageTexture::Texel ImageTexture::Fetch(int x, int y) const {
     x = Wrap(x, image_->width);
     y = Wrap(y, image_->height);
-    // Rows are stored top first; y counts from the bottom.
-    const uint8_t* px = image_->Row(image_->height - 1 - y) + x * image_->channels;
+    // Texture row y is the y-th stored row: the original reads the first row of a file as
+    // row 0 (v = 0) (shared/reference/README.md), so an mtv or PNG file, stored top row
+    // first, maps with its top row at v = 0, as the references were rendered.
+    const uint8_t* px = image_->Row(y) + x * image_->channels;
     constexpr double kScale = 1.0 / 255.0;
     switch (image_->channels) {
         case 1:
@@ -168,7 +170,7 @@ void ImageTexture::Apply(TextureContext& ctx, Surface& surface) const {
     double u = uv.u - std::floor(uv.u), v = uv.v - std::floor(uv.v);
 
     if (options_.component == ImageComponent::Bump) {
-        // Finite differences one pixel right and one row up, unsmoothed.
+        // Finite differences one pixel right and one stored row further, unsmoothed.
         int ix = static_cast<int>(u * image_->width), iy = static_cast<int>(v * image_->height);
         Texel h0 = Fetch(ix, iy);
         if (HasAlpha() && h0.alpha < kTransparentAlpha) return;

@@ -1,8 +1,9 @@
 // `image FILE {imgopt}` (spec §3.13): modulates one surface field, or bumps the normal,
 // from an image looked up at the mapped (u, v).
 //
-// Orientation: v = 0 is the bottom row of the picture (as with the original's RLE
-// images, whose first stored row is the bottom), u = 0 its left column. The texture
+// Orientation: v = 0 is the FIRST STORED row of the file, u = 0 its left column. PNG and
+// mtv files store the top row first, so their top row lies at v = 0, exactly as the
+// original's mtv build reads them (the reference images were made that way). The texture
 // transform acts on (u, v).
 #pragma once
 
@@ -59,7 +60,7 @@ class ImageTexture : public Texture {
     struct Texel {
         double r, g, b, alpha;
     };
-    Texel Fetch(int x, int y) const;  // x, y wrapped; y = 0 is the picture's bottom row
+    Texel Fetch(int x, int y) const;  // x, y wrapped; y = 0 is the first stored row
     Texel Lookup(double u, double v) const;
     bool HasAlpha() const { return image_->channels == 2 || image_->channels == 4; }
     double Range(double x) const { return options_.lo + x * (options_.hi - options_.lo); }

@@ -16,7 +16,7 @@ constexpr int kHashSize = 4096;
 constexpr int kHashMask = kHashSize - 1;
 // Gradient table: a lattice corner hashes to m in [0, 255] and DNoise reads up to R[m + 11].
 constexpr int kGradientSize = 256 + 11;
-// Shift applied to every coordinate so lattice indices are positive for |p| < 10^6.
+// Shift applied to every coordinate (the original's), keeping indices positive above −10^6.
 constexpr double kNoiseShift = 1e6;
 
 // CRC-16/ARC (reflected polynomial 0xA001, initial value 0) of `size` bytes.
@@ -59,59 +59,60 @@ const NoiseTables& Tables() {
     return tables;
 }
 
-// One axis of the lattice: the two corner indices (mod 4096), the fraction f in [0, 1) and
-// the smoothstep weight s = f²(3 − 2f).
+// One axis of the lattice: the two corner indices (mod 4096), the offsets f and f − 1 from
+// those corners, and the smoothstep weights 1 − s and s with s = f²(3 − 2f).
 struct Axis {
     int i0, i1;
-    double f, s;
+    double d0, d1;
+    double w0, w1;
 };
 
 inline Axis MakeAxis(double coordinate) {
     double q = coordinate + kNoiseShift;
     long i = static_cast<long>(q);
-    if (q < static_cast<double>(i)) --i;  // floor for the (unsupported) far negative range
+    if (q < static_cast<double>(i)) --i;  // floor, also below −10^6
     Axis a;
-    a.f = q - static_cast<double>(i);
-    a.s = a.f * a.f * (3.0 - 2.0 * a.f);
+    double f = q - static_cast<double>(i);
+    double s = f * f * (3.0 - 2.0 * f);
     a.i0 = static_cast<int>(i & kHashMask);
     a.i1 = static_cast<int>((i + 1) & kHashMask);
+    a.d0 = f;
+    a.d1 = f - 1.0;
+    a.w0 = 1.0 - s;
+    a.w1 = s;
     return a;
 }
 
-// The eight corners' gradient offsets m (already reduced to [0, 255]) and weights, in the
-// order (cx, cy, cz) = 000, 100, 010, 110, 001, 101, 011, 111.
+// The eight corners (cx, cy, cz) of the cell around p: gradient offsets m in [0, 255],
+// trilinear smoothstep weights and the offsets of p from each corner.
 struct Lattice {
     int m[8];
     double w[8];
-    double fx, fy, fz;
+    double dx[8], dy[8], dz[8];
 };
 
-inline Lattice MakeLattice(const NoiseTables& t, const Vec3& p) {
+inline void MakeLattice(const int* h, const Vec3& p, Lattice& l) {
     Axis x = MakeAxis(p.x), y = MakeAxis(p.y), z = MakeAxis(p.z);
-    const int* h = t.hash;
-    int hx0 = h[x.i0], hx1 = h[x.i1];
-    int hxy[4] = {h[hx0 ^ y.i0], h[hx1 ^ y.i0], h[hx0 ^ y.i1], h[hx1 ^ y.i1]};
-    double wxy[4] = {(1 - x.s) * (1 - y.s), x.s * (1 - y.s), (1 - x.s) * y.s, x.s * y.s};
-    Lattice l;
-    for (int k = 0; k < 4; ++k) {
-        l.m[k] = h[hxy[k] ^ z.i0] & 255;
-        l.m[k + 4] = h[hxy[k] ^ z.i1] & 255;
-        l.w[k] = wxy[k] * (1 - z.s);
-        l.w[k + 4] = wxy[k] * z.s;
+    int hx[2] = {h[x.i0], h[x.i1]};
+    int iy[2] = {y.i0, y.i1}, iz[2] = {z.i0, z.i1};
+    double wx[2] = {x.w0, x.w1}, wy[2] = {y.w0, y.w1}, wz[2] = {z.w0, z.w1};
+    double dx[2] = {x.d0, x.d1}, dy[2] = {y.d0, y.d1}, dz[2] = {z.d0, z.d1};
+    for (int k = 0; k < 8; ++k) {
+        int cx = k & 1, cy = (k >> 1) & 1, cz = k >> 2;
+        l.m[k] = h[h[hx[cx] ^ iy[cy]] ^ iz[cz]] & 255;
+        l.w[k] = wx[cx] * wy[cy] * wz[cz];
+        l.dx[k] = dx[cx];
+        l.dy[k] = dy[cy];
+        l.dz[k] = dz[cz];
     }
-    l.fx = x.f;
-    l.fy = y.f;
-    l.fz = z.f;
-    return l;
 }
 
-// Σ over corners of w·(½R[m+o] + R[m+o+1](fx−cx) + R[m+o+2](fy−cy) + R[m+o+3](fz−cz)).
+// Σ over corners of w·(½R[m+o] + R[m+o+1]·dx + R[m+o+2]·dy + R[m+o+3]·dz).
 inline double Sum(const Lattice& l, const double* r, int o) {
     double sum = 0;
     for (int k = 0; k < 8; ++k) {
         const double* g = r + l.m[k] + o;
-        double dx = l.fx - (k & 1), dy = l.fy - ((k >> 1) & 1), dz = l.fz - (k >> 2);
-        sum += l.w[k] * (0.5 * g[0] + g[1] * dx + g[2] * dy + g[3] * dz);
+        sum += l.w[k] * (0.5 * g[0] + g[1] * l.dx[k] + g[2] * l.dy[k] + g[3] * l.dz[k]);
     }
     return sum;
 }
@@ -120,12 +121,15 @@ inline double Sum(const Lattice& l, const double* r, int o) {
 
 double Noise(const Vec3& p) {
     const NoiseTables& t = Tables();
-    return Sum(MakeLattice(t, p), t.gradient, 0);
+    Lattice l;
+    MakeLattice(t.hash, p, l);
+    return Sum(l, t.gradient, 0);
 }
 
 Vec3 DNoise(const Vec3& p) {
     const NoiseTables& t = Tables();
-    Lattice l = MakeLattice(t, p);
+    Lattice l;
+    MakeLattice(t.hash, p, l);
     return {Sum(l, t.gradient, 0), Sum(l, t.gradient, 4), Sum(l, t.gradient, 8)};
 }
 

@@ -10,7 +10,9 @@
 namespace rs {
 
 // Scalar noise at p; roughly in [-1, 1], continuous with continuous first derivatives.
-// Exact for |p| < 10^6 on every axis (points are shifted by +10^6 before the lattice lookup).
+// Points are shifted by +10^6 per axis before the lattice lookup, as in the original; the
+// lattice cell is the floor of the shifted coordinate everywhere (the original truncated,
+// which differs only below −10^6).
 double Noise(const Vec3& p);
 
 // Vector noise at p on the same lattice; its x component equals Noise(p).

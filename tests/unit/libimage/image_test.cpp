@@ -336,6 +336,8 @@ TEST_F(ImageFiles, MtvErrorsForBadHeadersTruncationAndAbsurdSizes) {
         {"16385 16384\n", "absurd"},     // 2^28 + 16384 pixels
         {"1234567890 1\n", "header"},    // too many digits
         {"2 2\nabcdefghijk", "truncated"},  // 11 of 12 bytes
+        {"\x89PNG", "truncated PNG"},       // half a PNG signature
+        {"\x01\x02 3\n", "\"?? 3\""},       // binary shown as '?'
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.bytes);

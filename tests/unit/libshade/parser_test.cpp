@@ -334,10 +334,7 @@ TEST(Parser, ErrorsCarryFileAndLine) {
          "t.ray:3: 'light' is not allowed inside an aggregate"},
         {"sphere 1 0 0 0\nlist\nsphere 1 0 0 0\n", "t.ray:2: Missing 'end' for this 'list'"},
         {"sphere 1 0 0 0 scale 0 1 1", "t.ray:1: Singular matrix"},
-        {"sphere 1 0 0 0\nblob 0.5 1 1 0 0 0",
-         "t.ray:2: The 'blob' primitive is not supported yet"},
-        {"sphere 1 0 0 0\nheightfield x.hf",
-         "t.ray:2: The 'heightfield' primitive is not supported yet"},
+        {"sphere 1 0 0 0\nheightfield x.hf", "t.ray:2: cannot open height field 'x.hf'"},
         {"sphere 1 0 0 0\nsample 0", "t.ray:2: The sample count must be at least 1"},
         {"sphere 1 0 0 0\nscreen 0 10", "t.ray:2: Invalid screen resolution"},
         {"sphere 1 0 0 0\nreport 0", "t.ray:2: The report frequency must be at least 1"},
@@ -505,7 +502,7 @@ TEST(Parser, RandomTokenSoupFailsCleanly) {
 class ExampleScene : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ExampleScene, Parses) {
-    const std::string dir = "/work/shared/scenes/rayshade";
+    const std::string dir = RAYSHADE_SCENES_DIR;
     if (access(dir.c_str(), R_OK) != 0) GTEST_SKIP() << "scene folder not available";
     char cwd[4096];
     ASSERT_NE(getcwd(cwd, sizeof cwd), nullptr);
@@ -535,7 +532,7 @@ INSTANTIATE_TEST_SUITE_P(Rayshade, ExampleScene,
 TEST(ExampleScenes, CoinIsAnimated) {
     CaptureDiagnostics quiet;
     ParseInput in;
-    in.path = "/work/shared/scenes/rayshade/coin.ray";
+    in.path = std::string(RAYSHADE_SCENES_DIR) + "/coin.ray";
     if (access(in.path.c_str(), R_OK) != 0) GTEST_SKIP() << "scene not available";
     Scene s = ParseScene(in, RenderOptions());
     EXPECT_EQ(s.options.frames, 32);
@@ -552,18 +549,12 @@ TEST(ExampleScenes, CoinIsAnimated) {
     EXPECT_NEAR(c.z, 7, 1e-9);
 }
 
-TEST(ExampleScenes, BlobIsNotSupportedYet) {
+TEST(ExampleScenes, BlobSceneParses) {
     ParseInput in;
-    in.path = "/work/shared/scenes/rayshade/blob.ray";
+    in.path = std::string(RAYSHADE_SCENES_DIR) + "/blob.ray";
     if (access(in.path.c_str(), R_OK) != 0) GTEST_SKIP() << "scene not available";
-    CaptureDiagnostics quiet;
-    try {
-        ParseScene(in, RenderOptions());
-        FAIL() << "blob parsed";
-    } catch (const FatalError& e) {
-        EXPECT_EQ(std::string(e.what()),
-                  in.path + ":12: The 'blob' primitive is not supported yet");
-    }
+    Scene s = ParseScene(in, RenderOptions());
+    EXPECT_EQ(s.world->PrimitiveCount(), 2);  // the blob and the plane
 }
 
 }  // namespace
