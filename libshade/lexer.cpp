@@ -130,7 +130,7 @@ void Lexer::ReadLineMarker() {
         size_t close = line.find('"', i + 1);
         if (close == std::string::npos) Fail("Unknown '#' control: %s", line);
         file = line.substr(i + 1, close - i - 1);
-        if (file.empty()) file = "stdin";
+        if (file.empty() || file == "<stdin>") file = "stdin";  // gcc names stdin "<stdin>"
         i = close + 1;
         // gcc appends flags (1 = enter include, 2 = return, 3 = system header, 4 = extern C).
         while (i < line.size() && (IsBlank(line[i]) || IsDigit(line[i]))) ++i;

@@ -23,8 +23,7 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry();
 // The row for `keyword`, or null.
 const PrimitiveEntry* FindPrimitive(const std::string& keyword);
 
-// Whether `keyword` names a primitive of the language (spec §2 `primitive`), implemented or
-// not: blob and heightfield are keywords before their rows exist.
+// Whether `keyword` starts a primitive (spec §2 `primitive`): it has a row in the table.
 bool IsPrimitiveKeyword(const std::string& keyword);
 
 }  // namespace rs

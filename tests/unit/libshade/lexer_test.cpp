@@ -121,6 +121,7 @@ TEST(Lexer, LineMarkersSetFileAndLine) {
     EXPECT_EQ(t[3].location.line, 7);
     EXPECT_EQ(t[4].location.file, "stdin");
     EXPECT_EQ(t[4].location.line, 3);
+    EXPECT_EQ(LexAll("# 5 \"<stdin>\"\nx")[0].location.file, "stdin");
 }
 
 TEST(Lexer, UnknownHashControlIsAnError) {

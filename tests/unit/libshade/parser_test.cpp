@@ -5,10 +5,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <random>
 
 #include "libcommon/error.h"
 #include "libshade/expression.h"
 #include "libsurf/surface.h"
+#include "libtext/texture.h"
 
 namespace rs {
 namespace {
@@ -221,6 +223,15 @@ TEST(Parser, CursurfWithoutDefaultIsTheDefaultSurface) {
     EXPECT_EQ(Top(s)[1]->surface->reflect, 1);
 }
 
+TEST(Parser, DefinitionsInsideAggregatesAreGlobal) {
+    Scene s = Parse(
+        "list surface inner diffuse 0 0 1 name ball sphere 1 0 0 0 box 0 0 0 1 1 1 end\n"
+        "sphere inner 1 0 0 0 object ball\n");
+    ASSERT_EQ(Top(s).size(), 3u);
+    EXPECT_EQ(Top(s)[1]->surface->diffuse, Color(0, 0, 1));
+    EXPECT_EQ(Top(s)[2]->kind(), Object::Kind::Instance);
+}
+
 TEST(Parser, SurfaceRedefinitionWarnsAndShadows) {
     CaptureDiagnostics diags;
     Scene s = Parse("surface a diffuse 1 1 1\nsurface a diffuse 0 0 1\nsphere a 1 0 0 0");
@@ -279,6 +290,22 @@ TEST(Parser, AnimatedTransforms) {
     SetCurrentFrame(4);
     EXPECT_NEAR(ball.parentFromObject.At(10).ApplyPoint({0, 0, 0}).z, 4, 1e-12);
     SetCurrentFrame(0);
+}
+
+TEST(Parser, TextureTransformsMayBeAnimated) {
+    Scene s = Parse(
+        "sphere 1 0 0 0 texture bump 1 scale 2 2 2 rotate 0 0 1 (linear(0, 0, 1, 90))\n"
+        "texture wood translate 1 0 0\n");
+    const Object& ball = *Top(s)[0];
+    ASSERT_EQ(ball.textures.size(), 2u);
+    EXPECT_TRUE(ball.textures[0]->transform.IsAnimated());
+    Vec3 p = ball.textures[0]->transform.At(1).ApplyPoint({1, 0, 0});
+    EXPECT_NEAR(p.x, 0, 1e-12);
+    EXPECT_NEAR(p.y, 2, 1e-12);
+    EXPECT_FALSE(ball.textures[1]->transform.IsAnimated());
+    EXPECT_FALSE(ball.parentFromObject.IsAnimated());
+    EXPECT_NE(ParseError("sphere 1 0 0 0 texture bump (time)").find("Illegal expression use"),
+              std::string::npos);
 }
 
 TEST(Parser, IllegalTimeVaryingUse) {
@@ -427,9 +454,11 @@ TEST(Parser, ScenesFromStandardInputAndFilesThroughCpp) {
     char name[] = "/tmp/rs_scene_XXXXXX";
     int fd = mkstemp(name);
     close(fd);
-    std::ofstream(name) << "#define R 2\n#define EXPAND(x) scale x x x\nsphere R 0 0 0 EXPAND(3)\n";
+    std::ofstream(name) << "#define EXPAND(x) scale x x x\nsphere R 0 0 0 EXPAND(S)\n";
     ParseInput in;
     in.path = name;
+    in.cppArgs = "-DR=2";
+    in.extraDefines = {"S=3"};
     Scene s = ParseScene(in, RenderOptions());
     ASSERT_EQ(Top(s).size(), 1u);
     EXPECT_DOUBLE_EQ(Top(s)[0]->parentFromObject.Static().ApplyPoint({1, 0, 0}).x, 3);
@@ -444,8 +473,46 @@ TEST(Parser, ScenesFromStandardInputAndFilesThroughCpp) {
             error = e.what();
         }
     }
-    EXPECT_EQ(error, std::string(name) + ":1: Unknown '#' control: #define R 2");
+    EXPECT_EQ(error, std::string(name) + ":1: Unknown '#' control: #define EXPAND(x) scale x x x");
     std::remove(name);
+}
+
+// Random token sequences either parse or fail with a FatalError: no crash, no hang.
+TEST(Parser, RandomTokenSoupFailsCleanly) {
+    const char* vocab[] = {
+        "sphere",     "box",       "plane",      "disc",        "cylinder", "cone",
+        "torus",      "triangle",  "triangleuv", "poly",        "list",     "grid",
+        "union",      "intersect", "difference", "end",         "object",   "name",
+        "surface",    "applysurf", "cursurf",    "ambient",     "diffuse",  "specpow",
+        "reflect",    "transp",    "index",      "translu",     "noshadow", "translate",
+        "scale",      "rotate",    "transform",  "texture",     "checker",  "bump",
+        "wood",       "blotch",    "stripe",     "gloss",       "map",      "uv",
+        "planar",     "light",     "point",      "directional", "spot",     "area",
+        "define",     "print",     "eyep",       "fov",         "screen",   "sample",
+        "atmosphere", "fog",       "report",     "(",           ")",        "-",
+        "+",          "*",         "/",          "%",           "^",        ",",
+        "time",       "frame",     "linear",     "pi",          "sin",      "hypot",
+        "a",          "b",         "1",          "0",           "2",        "0.5",
+        "1e3"};
+    const int n = sizeof vocab / sizeof *vocab;
+    CaptureDiagnostics quiet;
+    int parsed = 0;
+    for (unsigned seed = 1; seed <= 3000; ++seed) {
+        std::mt19937 rng(seed);
+        std::string text = "sphere 1 0 0 0\n";
+        for (int i = 0, len = static_cast<int>(rng() % 60); i < len; ++i) {
+            text += vocab[rng() % n];
+            text += rng() % 5 == 0 ? "\n" : " ";
+        }
+        try {
+            Parse(text);
+            ++parsed;
+        } catch (const FatalError&) {
+        } catch (...) {
+            ADD_FAILURE() << "seed " << seed << ": unexpected exception for\n" << text;
+        }
+    }
+    EXPECT_GT(parsed, 0);
 }
 
 // The example scenes of the original distribution parse completely.
