@@ -104,7 +104,9 @@ void Renderer::TakeSingleSample(int x, int y, Pixel& px) const {
     Rng rng = Rng::ForKey(absX, absY, frame_, kSingleSampleStream);
     int cells = pattern_.Cells();
     px.singleCell = std::min(cells - 1, static_cast<int>(rng.Uniform() * cells));
-    px.single = SampleCell(absX, absY, px.singleCell, rng, px.singleAlpha);
+    double alpha = 0;
+    px.value = SampleCell(absX, absY, px.singleCell, rng, alpha);
+    px.alpha = static_cast<float>(alpha);
 }
 
 void Renderer::Supersample(int x, int y, Pixel& px) const {
@@ -114,8 +116,8 @@ void Renderer::Supersample(int x, int y, Pixel& px) const {
     for (int cell = 0; cell < pattern_.Cells(); ++cell) {
         double w = pattern_.Weight(cell);
         if (cell == px.singleCell) {
-            sum += px.single * w;
-            alpha += px.singleAlpha * w;
+            sum += px.value * w;
+            alpha += px.alpha * w;
             continue;
         }
         Rng rng = Rng::ForKey(absX, absY, frame_, kCellStreamBase + cell);
@@ -123,8 +125,8 @@ void Renderer::Supersample(int x, int y, Pixel& px) const {
         sum += SampleCell(absX, absY, cell, rng, a) * w;
         alpha += a * w;
     }
-    px.full = sum;
-    px.fullAlpha = alpha;
+    px.value = sum;
+    px.alpha = static_cast<float>(alpha);
     px.supersampled = true;
     Count(kSupersampled);
 }
@@ -133,9 +135,9 @@ bool Renderer::NeedsRefinement(const std::vector<Pixel>& pixels, int x, int y) c
     const int w = window_.Width();
     const Pixel* five[5] = {&pixels[y * w + x], &pixels[y * w + x - 1], &pixels[y * w + x + 1],
                             &pixels[(y - 1) * w + x], &pixels[(y + 1) * w + x]};
-    Color lo = Value(*five[0]), hi = lo;
+    Color lo = five[0]->value, hi = lo;
     for (const Pixel* p : five) {
-        const Color& c = Value(*p);
+        const Color& c = p->value;
         lo = {std::min(lo.r, c.r), std::min(lo.g, c.g), std::min(lo.b, c.b)};
         hi = {std::max(hi.r, c.r), std::max(hi.g, c.g), std::max(hi.b, c.b)};
     }
@@ -230,11 +232,11 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha) {
         uint8_t* out = image.Row(y);
         for (int x = 0; x < w; ++x) {
             const Pixel& px = pixels[y * w + x];
-            const Color& c = Value(px);
+            const Color& c = px.value;
             *out++ = EncodeChannel(c.r, exponent);
             *out++ = EncodeChannel(c.g, exponent);
             *out++ = EncodeChannel(c.b, exponent);
-            if (withAlpha) *out++ = EncodeChannel(px.supersampled ? px.fullAlpha : px.singleAlpha, 1);
+            if (withAlpha) *out++ = EncodeChannel(px.alpha, 1);
         }
     }
     return image;

@@ -42,12 +42,13 @@ class Renderer {
     Image RenderFrame(int frame, double frameTime, bool withAlpha);
 
   private:
+    // One pixel's state: its single sample until it is supersampled, then the filtered
+    // n×n result (which reuses the single sample for its cell). Kept small: an image holds
+    // one per pixel.
     struct Pixel {
-        Color single;
-        double singleAlpha = 0;
+        Color value;
+        float alpha = 0;
         int singleCell = 0;
-        Color full;
-        double fullAlpha = 0;
         bool supersampled = false;
     };
 
@@ -57,7 +58,6 @@ class Renderer {
     // Runs body(i) for i in [0, count) on the worker threads.
     void ParallelFor(long count, const std::function<void(long)>& body) const;
     bool NeedsRefinement(const std::vector<Pixel>& pixels, int x, int y) const;
-    const Color& Value(const Pixel& px) const { return px.supersampled ? px.full : px.single; }
 
     const Scene& scene_;
     const RenderOptions& options_;

@@ -13,6 +13,7 @@ const CounterId kBoundsTests = RegisterCounter("bounding box tests");
 std::shared_ptr<Object> Object::MakePrimitive(std::shared_ptr<Primitive> p) {
     std::shared_ptr<Object> o(new Object(Kind::Primitive));
     o->primitive_ = std::move(p);
+    o->counters_ = &o->primitive_->Counters();
     return o;
 }
 
@@ -37,7 +38,7 @@ bool Object::Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecor
     bool found = false;
     switch (kind_) {
         case Kind::Primitive: {
-            const IntersectionCounters& counters = primitive_->Counters();
+            const IntersectionCounters& counters = *counters_;
             Count(counters.tests);
             PrimitiveHit ph;
             if (primitive_->Intersect(ray, tMin, tMax, ph)) {

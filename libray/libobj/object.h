@@ -61,6 +61,7 @@ class Object {
 
     Kind kind_;
     std::shared_ptr<Primitive> primitive_;
+    const IntersectionCounters* counters_ = nullptr;  // the primitive's, looked up once
     std::shared_ptr<Aggregate> aggregate_;
     std::shared_ptr<Object> instanceOf_;
 
