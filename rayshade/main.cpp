@@ -1,5 +1,6 @@
 // rayshade: renders a Rayshade 4.0 scene file to PNG (or the original's mtv format).
 #include <sys/resource.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -14,6 +15,7 @@
 #include "liblight/directional_light.h"
 #include "libshade/expression.h"
 #include "libshade/parser.h"
+#include "rayshade/checkpoint.h"
 #include "rayshade/cli.h"
 #include "rayshade/renderer.h"
 #include "rayshade/report.h"
@@ -65,6 +67,37 @@ class Progress {
     int last_ = -1;
 };
 
+void OnInterrupt(int) { rs::RequestStop(); }
+
+// What identifies a render for continuing it: the command line and the scene file's bytes,
+// leaving out the options that cannot change the image (-c itself, threads, reporting).
+// A partial state saved under another fingerprint is refused.
+std::string RenderFingerprint(int argc, char** argv, const std::string& inputFile) {
+    std::string f;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        if (a == "-c" || a == "-q" || a == "-v") continue;
+        if (a == "-t" || a == "-V" || a == "-F") {
+            ++i;  // and its argument
+            continue;
+        }
+        f += a + '\n';
+    }
+    uint64_t hash = 1469598103934665603ULL;  // FNV-1a over the scene file
+    if (std::FILE* in = inputFile.empty() ? nullptr : std::fopen(inputFile.c_str(), "rb")) {
+        for (int c; (c = std::fgetc(in)) != EOF;) hash = (hash ^ static_cast<uint8_t>(c)) * 1099511628211ULL;
+        std::fclose(in);
+    }
+    return f + std::to_string(hash);
+}
+
+// Seconds between partial-state saves: RAYSHADE_CHECKPOINT_SECONDS, default 10.
+double CheckpointSeconds() {
+    const char* v = std::getenv("RAYSHADE_CHECKPOINT_SECONDS");
+    double s = v ? std::atof(v) : 10;
+    return s > 0 ? s : 10;
+}
+
 double CpuSeconds(bool user) {
     rusage ru{};
     getrusage(RUSAGE_SELF, &ru);
@@ -111,8 +144,6 @@ int Run(int argc, char** argv) {
         return 0;
     }
     gQuiet = cl.options.quiet;
-    if (cl.resume)
-        rs::Report(Severity::Abort, {}, "-c (continue an interrupted render) is not supported yet");
     if (cl.options.statsFileSet) {
         gStats = std::fopen(cl.options.statsFile.c_str(), "w");
         if (!gStats) {
@@ -143,12 +174,39 @@ int Run(int argc, char** argv) {
     if (toStdout && isatty(STDOUT_FILENO))
         rs::Report(Severity::Abort, {}, "no output file: give one with -O file.png (or redirect standard output for mtv)");
 
+    // Continued rendering: the partial state names the frame in progress; earlier frames
+    // were written before the interruption.
+    const std::string fingerprint = RenderFingerprint(argc, argv, cl.inputFile);
+    const std::string partialPath = toStdout ? std::string() : rs::PartialStatePath(o.outFile);
+    rs::FrameState resumed;
+    int firstFrame = o.startFrame;
+    if (cl.resume) {
+        if (toStdout) rs::Report(Severity::Abort, {}, "-c needs an output file (-O or outfile)");
+        if (!rs::LoadFrameState(partialPath, fingerprint, resumed, error))
+            rs::Report(Severity::Abort, {}, "%s", error.c_str());
+        if (resumed.frame < o.startFrame || resumed.frame >= o.startFrame + o.frames)
+            rs::Report(Severity::Abort, {}, "partial state '%s' is for frame %d, outside this render",
+                       partialPath.c_str(), resumed.frame);
+        firstFrame = resumed.frame;
+    }
+    signal(SIGINT, OnInterrupt);
+    signal(SIGTERM, OnInterrupt);
+    const double checkpointSeconds = CheckpointSeconds();
+    rs::CheckpointFn checkpoint;
+    if (!toStdout) {
+        checkpoint = [&](const rs::FrameState& state, bool) {
+            std::string saveError;
+            if (!rs::SaveFrameState(partialPath, fingerprint, state, saveError))
+                rs::Report(Severity::Warn, {}, "%s", saveError.c_str());
+        };
+    }
+
     rs::RunTimes times;
-    for (int f = o.startFrame; f < o.startFrame + o.frames; ++f) {
+    for (int f = firstFrame; f < o.startFrame + o.frames; ++f) {
         double frameTime = o.startTime + f * o.frameLength;
         rs::SetCurrentFrame(f);
         scene.world->PrepareFrame(frameTime, o.shutter);
-        if (f == o.startFrame) {
+        if (f == firstFrame) {
             times.preprocessSeconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (!o.quiet) std::fprintf(gStats, "Preprocessing time:\t%.2f sec\nStarting trace.\n", times.preprocessSeconds);
@@ -156,7 +214,17 @@ int Run(int argc, char** argv) {
         auto renderStart = std::chrono::steady_clock::now();
         Progress progress(o.quiet, f);
         rs::Renderer renderer(scene, [&](long done, long total) { progress(done, total); });
-        rs::Image image = renderer.RenderFrame(f, frameTime, cl.alpha && !toStdout);
+        bool resuming = cl.resume && f == resumed.frame;
+        rs::Image image;
+        try {
+            image = renderer.RenderFrame(f, frameTime, cl.alpha && !toStdout,
+                                         resuming ? &resumed : nullptr, checkpoint, checkpointSeconds);
+        } catch (const rs::RenderStopped&) {
+            if (toStdout)
+                rs::Report(Severity::Abort, {}, "interrupted");
+            rs::Report(Severity::Abort, {}, "interrupted; the partial state is in '%s': run the same command with -c to continue",
+                       partialPath.c_str());
+        }
         times.renderWallSeconds +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - renderStart).count();
         if (toStdout) {
@@ -166,6 +234,7 @@ int Run(int argc, char** argv) {
         } else {
             std::string name = o.frames > 1 ? FrameFileName(o.outFile, f) : o.outFile;
             if (!rs::WriteImage(name, image, error)) rs::Report(Severity::Abort, {}, "%s", error.c_str());
+            std::remove(partialPath.c_str());  // the frame is complete
         }
     }
     times.cpuUserSeconds = CpuSeconds(true);

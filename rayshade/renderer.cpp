@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <thread>
 
@@ -65,7 +66,7 @@ void Renderer::ParallelFor(long count, const std::function<void(long)>& body) co
     std::atomic<long> next{0};
     std::atomic<long> done{0};
     auto worker = [&] {
-        for (long i; (i = next.fetch_add(1)) < count;) {
+        for (long i; !StopRequested() && (i = next.fetch_add(1)) < count;) {
             body(i);
             done.fetch_add(1);
         }
@@ -103,10 +104,11 @@ void Renderer::TakeSingleSample(int x, int y, Pixel& px) const {
     int absX = window_.minX + x, absY = window_.minY + y;
     Rng rng = Rng::ForKey(absX, absY, frame_, kSingleSampleStream);
     int cells = pattern_.Cells();
-    px.singleCell = std::min(cells - 1, static_cast<int>(rng.Uniform() * cells));
+    px.singleCell = static_cast<int16_t>(std::min(cells - 1, static_cast<int>(rng.Uniform() * cells)));
     double alpha = 0;
     px.value = SampleCell(absX, absY, px.singleCell, rng, alpha);
     px.alpha = static_cast<float>(alpha);
+    px.sampled = true;
 }
 
 void Renderer::Supersample(int x, int y, Pixel& px) const {
@@ -149,29 +151,88 @@ bool Renderer::NeedsRefinement(const std::vector<Pixel>& pixels, int x, int y) c
            exceeds(lo.b, hi.b, options_.contrast.b);
 }
 
-Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha) {
+namespace {
+std::atomic<bool> gStopRequested{false};
+}  // namespace
+
+void RequestStop() { gStopRequested.store(true, std::memory_order_relaxed); }
+bool StopRequested() { return gStopRequested.load(std::memory_order_relaxed); }
+
+std::vector<long> Renderer::RefinementTodo(const FrameState& state,
+                                           const std::vector<long>& candidates) const {
+    const int w = state.width;
+    std::vector<long> todo;
+    for (long c : candidates) {
+        if (!NeedsRefinement(state.pixels, static_cast<int>(c % w), static_cast<int>(c / w)))
+            continue;
+        for (long n : {c, c - 1, c + 1, c - w, c + w})
+            if (!state.pixels[n].supersampled) todo.push_back(n);
+    }
+    std::sort(todo.begin(), todo.end());
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    return todo;
+}
+
+Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameState* resumeFrom,
+                            CheckpointFn checkpoint, double checkpointSeconds) {
     frame_ = frame;
     frameTime_ = frameTime;
     const int w = window_.Width(), h = window_.Height();
     // One extra row below the window is sampled for the contrast test of the last row
     // (spec §3.3) but never written.
     const int rows = h + 1;
-    std::vector<Pixel> pixels(static_cast<size_t>(w) * rows);
+    FrameState fresh;
+    FrameState& state = resumeFrom ? *resumeFrom : fresh;
+    if (!resumeFrom) {
+        state.frame = frame;
+        state.width = w;
+        state.rows = rows;
+        state.pixels.assign(static_cast<size_t>(w) * rows, Pixel{});
+    }
+    std::vector<Pixel>& pixels = state.pixels;
+    using Phase = FrameState::Phase;
+
     const long totalWork = static_cast<long>(w) * rows * 2;
     std::atomic<long> work{0};
     auto report = [&](long units) {
         long now = work.fetch_add(units) + units;
         if (progress_) progress_(std::min(now, totalWork), totalWork);
     };
+    auto lastCheckpoint = std::chrono::steady_clock::now();
+    // After each piece of work: save the state when asked to stop (then stop) or when the
+    // checkpoint interval has passed.
+    auto safePoint = [&] {
+        if (StopRequested()) {
+            if (checkpoint) checkpoint(state, true);
+            throw RenderStopped{};
+        }
+        auto now = std::chrono::steady_clock::now();
+        if (checkpoint && std::chrono::duration<double>(now - lastCheckpoint).count() >= checkpointSeconds) {
+            checkpoint(state, false);
+            lastCheckpoint = now;
+        }
+    };
 
-    // 1. One sample per pixel.
-    ParallelFor(rows, [&](long y) {
-        for (int x = 0; x < w; ++x) TakeSingleSample(x, static_cast<int>(y), pixels[y * w + x]);
-        report(w);
-    });
+    // 1. One sample per pixel, in blocks of rows so the state can be saved between them.
+    if (state.phase == Phase::SingleSamples) {
+        constexpr int kBlockRows = 16;
+        for (int y0 = 0; y0 < rows; y0 += kBlockRows) {
+            int y1 = std::min(rows, y0 + kBlockRows);
+            ParallelFor(y1 - y0, [&](long i) {
+                long y = y0 + i;
+                for (int x = 0; x < w; ++x) {
+                    Pixel& px = pixels[y * w + x];
+                    if (!px.sampled) TakeSingleSample(x, static_cast<int>(y), px);
+                }
+                report(w);
+            });
+            safePoint();
+        }
+        state.phase = pattern_.Cells() > 1 ? Phase::Border : Phase::Done;
+    }
 
     // 2. Full sampling of the first and last rows and of both end columns.
-    if (pattern_.Cells() > 1) {
+    if (state.phase == Phase::Border) {
         std::vector<long> border;
         for (int y = 0; y < rows; ++y) {
             bool wholeRow = y == 0 || y == h - 1;
@@ -180,48 +241,52 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha) {
         }
         ParallelFor(static_cast<long>(border.size()), [&](long i) {
             long idx = border[i];
-            Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
-        });
-
-        // 3. Contrast refinement until a pass changes nothing. The first pass tests every
-        // interior pixel; later passes only the pixels whose five-pixel neighbourhood
-        // contains one that the previous pass supersampled (no other test can change).
-        std::vector<long> candidates;
-        for (int y = 1; y < h; ++y)
-            for (int x = 1; x < w - 1; ++x) candidates.push_back(static_cast<long>(y) * w + x);
-        std::vector<int> markedInPass(pixels.size(), 0), candidateInPass(pixels.size(), 0);
-        for (int pass = 1; !candidates.empty(); ++pass) {
-            std::vector<long> todo;
-            for (long c : candidates) {
-                int x = static_cast<int>(c % w), y = static_cast<int>(c / w);
-                if (!NeedsRefinement(pixels, x, y)) continue;
-                for (long n : {c, c - 1, c + 1, c - w, c + w}) {
-                    if (pixels[n].supersampled || markedInPass[n] == pass) continue;
-                    markedInPass[n] = pass;
-                    todo.push_back(n);
-                }
-            }
-            std::sort(todo.begin(), todo.end());  // a fixed order whatever the candidates' order
-            ParallelFor(static_cast<long>(todo.size()), [&](long i) {
-                long idx = todo[i];
+            if (!pixels[idx].supersampled)
                 Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
-            });
-            report(static_cast<long>(todo.size()) / 4);
-            candidates.clear();
-            for (long t : todo) {
+        });
+        safePoint();
+        state.phase = Phase::Refinement;
+        state.pass = 0;
+        state.todo.clear();
+    }
+
+    // 3. Contrast refinement until a pass changes nothing. The first pass tests every
+    // interior pixel; later passes only the pixels whose five-pixel neighbourhood contains
+    // one that the previous pass supersampled (no other test result can change).
+    while (state.phase == Phase::Refinement) {
+        ParallelFor(static_cast<long>(state.todo.size()), [&](long i) {
+            long idx = state.todo[i];
+            if (!pixels[idx].supersampled)
+                Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
+        });
+        report(static_cast<long>(state.todo.size()) / 4);
+        safePoint();
+        std::vector<long> candidates;
+        if (state.pass == 0) {
+            for (int y = 1; y < h; ++y)
+                for (int x = 1; x < w - 1; ++x) candidates.push_back(static_cast<long>(y) * w + x);
+        } else {
+            for (long t : state.todo) {
                 for (long n : {t, t - 1, t + 1, t - w, t + w}) {
                     if (n < 0 || n >= static_cast<long>(pixels.size())) continue;
                     int x = static_cast<int>(n % w), y = static_cast<int>(n / w);
-                    if (x < 1 || x > w - 2 || y < 1 || y > h - 1 || candidateInPass[n] == pass) continue;
-                    candidateInPass[n] = pass;
-                    candidates.push_back(n);
+                    if (x >= 1 && x <= w - 2 && y >= 1 && y <= h - 1) candidates.push_back(n);
                 }
             }
+            std::sort(candidates.begin(), candidates.end());
+            candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
         }
+        state.todo = RefinementTodo(state, candidates);
+        ++state.pass;
+        if (state.todo.empty()) state.phase = Phase::Done;
     }
     if (progress_) progress_(totalWork, totalWork);
+    return Encode(state, withAlpha);
+}
 
-    // 4. Encode: byte = ⌊255·clamp(c^(1/gamma))⌋; alpha is not gamma-corrected.
+Image Renderer::Encode(const FrameState& state, bool withAlpha) const {
+    // Byte = ⌊255·clamp(c^(1/gamma))⌋; alpha is not gamma-corrected.
+    const int w = state.width, h = state.rows - 1;
     double exponent = std::fabs(options_.gamma) > kEpsilon ? 1 / options_.gamma : 1e14;
     Image image;
     image.width = w;
@@ -231,11 +296,10 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha) {
     for (int y = 0; y < h; ++y) {
         uint8_t* out = image.Row(y);
         for (int x = 0; x < w; ++x) {
-            const Pixel& px = pixels[y * w + x];
-            const Color& c = px.value;
-            *out++ = EncodeChannel(c.r, exponent);
-            *out++ = EncodeChannel(c.g, exponent);
-            *out++ = EncodeChannel(c.b, exponent);
+            const Pixel& px = state.pixels[static_cast<size_t>(y) * w + x];
+            *out++ = EncodeChannel(px.value.r, exponent);
+            *out++ = EncodeChannel(px.value.g, exponent);
+            *out++ = EncodeChannel(px.value.b, exponent);
             if (withAlpha) *out++ = EncodeChannel(px.alpha, 1);
         }
     }

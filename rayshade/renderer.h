@@ -33,32 +33,69 @@ RenderWindow ComputeWindow(const RenderOptions& options);
 // Progress callback: `done` of `total` units of work finished (called from one thread).
 using ProgressFn = std::function<void(long done, long total)>;
 
+// One pixel's state: its single sample until it is supersampled, then the filtered n×n
+// result (which reuses the single sample for its cell). Kept small: a frame holds one per
+// pixel.
+struct PixelState {
+    Color value;
+    float alpha = 0;
+    int16_t singleCell = 0;
+    bool sampled = false;       // the single sample has been taken
+    bool supersampled = false;
+};
+
+// Everything needed to continue a frame where it stopped; the renderer updates it as it
+// goes and hands it to the checkpoint callback. Continuing from a saved state gives the
+// same image as an uninterrupted render, because every sample's random stream is keyed by
+// its pixel and cell, not by the order of work.
+struct FrameState {
+    enum class Phase : int { SingleSamples = 0, Border = 1, Refinement = 2, Done = 3 };
+    int frame = 0;
+    int width = 0, rows = 0;  // rows includes the extra row below the window
+    Phase phase = Phase::SingleSamples;
+    int pass = 0;             // refinement passes completed
+    std::vector<long> todo;   // pixels the current refinement pass supersamples
+    std::vector<PixelState> pixels;
+};
+
+// Called by the renderer at safe points with the current state; `final` is true when the
+// render stops early (stop requested) and the state must be kept.
+using CheckpointFn = std::function<void(const FrameState& state, bool final)>;
+
+// Asks every render in progress to stop at the next safe point (async-signal-safe).
+void RequestStop();
+bool StopRequested();
+
+// Thrown by RenderFrame when a stop was requested; the checkpoint callback has saved the
+// state by then.
+struct RenderStopped {};
+
 class Renderer {
   public:
     Renderer(const Scene& scene, ProgressFn progress);
 
     // Renders frame number `frame` whose shutter opens at `frameTime`. The image is RGB, or
     // RGBA when `withAlpha` (alpha = filtered fraction of samples that hit something).
-    Image RenderFrame(int frame, double frameTime, bool withAlpha);
+    // `resumeFrom`, when given, is a state saved by an earlier, interrupted render of the
+    // same frame; `checkpoint` is offered the state about every `checkpointSeconds`.
+    Image RenderFrame(int frame, double frameTime, bool withAlpha,
+                      FrameState* resumeFrom = nullptr, CheckpointFn checkpoint = {},
+                      double checkpointSeconds = 10);
 
   private:
-    // One pixel's state: its single sample until it is supersampled, then the filtered
-    // n×n result (which reuses the single sample for its cell). Kept small: an image holds
-    // one per pixel.
-    struct Pixel {
-        Color value;
-        float alpha = 0;
-        int singleCell = 0;
-        bool supersampled = false;
-    };
+    using Pixel = PixelState;
 
     void TakeSingleSample(int x, int y, Pixel& px) const;
     void Supersample(int x, int y, Pixel& px) const;
     Color SampleCell(int absX, int absY, int cell, Rng& rng, double& alpha) const;
-    // Runs body(i) for i in [0, count) on the worker threads.
+    // Runs body(i) for i in [0, count) on the worker threads; stops handing out work when
+    // a stop is requested.
     void ParallelFor(long count, const std::function<void(long)>& body) const;
     bool NeedsRefinement(const std::vector<Pixel>& pixels, int x, int y) const;
-
+    // The next refinement pass's pixels: every not-yet-supersampled pixel in the
+    // five-pixel neighbourhood of a candidate whose contrast exceeds the thresholds.
+    std::vector<long> RefinementTodo(const FrameState& state, const std::vector<long>& candidates) const;
+    Image Encode(const FrameState& state, bool withAlpha) const;
     const Scene& scene_;
     const RenderOptions& options_;
     RenderWindow window_;

@@ -1,0 +1,158 @@
+#include "rayshade/checkpoint.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <type_traits>
+
+namespace rs {
+
+namespace {
+
+constexpr char kMagic[] = "RAYSHADE-PARTIAL 1\n";
+// Sizes beyond these cannot come from a render we would start (see main.cpp's limits).
+constexpr uint64_t kMaxPixels = (1ULL << 28) + (1ULL << 16);
+constexpr uint64_t kMaxFingerprint = 1 << 20;
+
+class Writer {
+  public:
+    explicit Writer(std::ofstream& out) : out_(out) {}
+    template <class T>
+    void Put(const T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        out_.write(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+    void PutBytes(const std::string& s) {
+        Put<uint64_t>(s.size());
+        out_.write(s.data(), static_cast<std::streamsize>(s.size()));
+    }
+
+  private:
+    std::ofstream& out_;
+};
+
+class Reader {
+  public:
+    explicit Reader(std::ifstream& in) : in_(in) {}
+    template <class T>
+    bool Get(T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        return static_cast<bool>(in_.read(reinterpret_cast<char*>(&v), sizeof v));
+    }
+    bool GetBytes(std::string& s, uint64_t limit) {
+        uint64_t n = 0;
+        if (!Get(n) || n > limit) return false;
+        s.resize(n);
+        return static_cast<bool>(in_.read(s.data(), static_cast<std::streamsize>(n)));
+    }
+
+  private:
+    std::ifstream& in_;
+};
+
+}  // namespace
+
+std::string PartialStatePath(const std::string& outFile) { return outFile + ".partial"; }
+
+bool SaveFrameState(const std::string& path, const std::string& fingerprint,
+                    const FrameState& state, std::string& error) {
+    const std::string temp = path + ".tmp-" + std::to_string(getpid());
+    {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        if (!out) {
+            error = "cannot write partial state '" + temp + "': " + std::strerror(errno);
+            return false;
+        }
+        Writer w(out);
+        out.write(kMagic, sizeof kMagic - 1);
+        w.PutBytes(fingerprint);
+        w.Put<int32_t>(state.frame);
+        w.Put<int32_t>(state.width);
+        w.Put<int32_t>(state.rows);
+        w.Put<int32_t>(static_cast<int32_t>(state.phase));
+        w.Put<int32_t>(state.pass);
+        w.Put<uint64_t>(state.todo.size());
+        for (long t : state.todo) w.Put<int64_t>(t);
+        w.Put<uint64_t>(state.pixels.size());
+        for (const PixelState& p : state.pixels) {
+            w.Put(p.value.r);
+            w.Put(p.value.g);
+            w.Put(p.value.b);
+            w.Put(p.alpha);
+            w.Put(p.singleCell);
+            w.Put<uint8_t>(static_cast<uint8_t>((p.sampled ? 1 : 0) | (p.supersampled ? 2 : 0)));
+        }
+        out.flush();
+        if (!out) {
+            error = "cannot write partial state '" + temp + "' (disk full?)";
+            out.close();
+            std::remove(temp.c_str());
+            return false;
+        }
+    }
+    if (std::rename(temp.c_str(), path.c_str()) != 0) {
+        error = "cannot rename '" + temp + "' to '" + path + "': " + std::strerror(errno);
+        std::remove(temp.c_str());
+        return false;
+    }
+    return true;
+}
+
+bool LoadFrameState(const std::string& path, const std::string& fingerprint, FrameState& state,
+                    std::string& error) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        error = "nothing to continue: cannot open '" + path + "': " + std::strerror(errno);
+        return false;
+    }
+    auto damaged = [&] {
+        error = "partial state '" + path + "' is damaged or truncated";
+        return false;
+    };
+    char magic[sizeof kMagic - 1];
+    if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof magic) != 0) return damaged();
+    Reader r(in);
+    std::string saved;
+    if (!r.GetBytes(saved, kMaxFingerprint)) return damaged();
+    if (saved != fingerprint) {
+        error = "partial state '" + path + "' belongs to a different scene or options";
+        return false;
+    }
+    int32_t frame, width, rows, phase, pass;
+    if (!r.Get(frame) || !r.Get(width) || !r.Get(rows) || !r.Get(phase) || !r.Get(pass))
+        return damaged();
+    if (width < 1 || rows < 2 || phase < 0 || phase > 3 || pass < 0 ||
+        static_cast<uint64_t>(width) * static_cast<uint64_t>(rows) > kMaxPixels)
+        return damaged();
+    const uint64_t pixelCount = static_cast<uint64_t>(width) * static_cast<uint64_t>(rows);
+    uint64_t todoCount = 0;
+    if (!r.Get(todoCount) || todoCount > pixelCount) return damaged();
+    state.todo.resize(todoCount);
+    for (long& t : state.todo) {
+        int64_t v;
+        if (!r.Get(v) || v < 0 || static_cast<uint64_t>(v) >= pixelCount) return damaged();
+        t = static_cast<long>(v);
+    }
+    uint64_t count = 0;
+    if (!r.Get(count) || count != pixelCount) return damaged();
+    state.pixels.resize(count);
+    for (PixelState& p : state.pixels) {
+        uint8_t flags = 0;
+        if (!r.Get(p.value.r) || !r.Get(p.value.g) || !r.Get(p.value.b) || !r.Get(p.alpha) ||
+            !r.Get(p.singleCell) || !r.Get(flags))
+            return damaged();
+        p.sampled = flags & 1;
+        p.supersampled = flags & 2;
+    }
+    state.frame = frame;
+    state.width = width;
+    state.rows = rows;
+    state.phase = static_cast<FrameState::Phase>(phase);
+    state.pass = pass;
+    return true;
+}
+
+}  // namespace rs
