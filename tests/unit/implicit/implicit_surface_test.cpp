@@ -1,0 +1,190 @@
+#include "libobj/implicit/implicit_surface.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "libsurf/surface.h"
+
+namespace rs {
+namespace {
+
+// An ArgReader over whitespace-separated tokens. The token TIME reads as the animated
+// number equal to the frame time.
+class TokenReader final : public ArgReader {
+  public:
+    explicit TokenReader(const std::string& text) {
+        size_t i = 0;
+        while (i < text.size()) {
+            size_t j = text.find_first_of(" \n", i);
+            if (j == std::string::npos) j = text.size();
+            if (j > i) tokens_.push_back(text.substr(i, j - i));
+            i = j + 1;
+        }
+    }
+    double ReadNumber() override {
+        if (!PeekNumber()) Fail("expected a number");
+        return std::strtod(tokens_[pos_++].c_str(), nullptr);
+    }
+    int ReadInt() override { return static_cast<int>(ReadNumber()); }
+    AnimatedValue ReadAnimatedNumber() override {
+        AnimatedValue v;
+        if (Accept("TIME")) {
+            v.at = [](double t) { return t; };
+        } else {
+            v.value = ReadNumber();
+        }
+        return v;
+    }
+    bool PeekNumber() override {
+        if (pos_ >= tokens_.size()) return false;
+        if (tokens_[pos_] == "TIME") return true;
+        char* end = nullptr;
+        std::strtod(tokens_[pos_].c_str(), &end);
+        return *end == '\0';
+    }
+    bool Accept(const char* word) override {
+        if (!Peek(word)) return false;
+        ++pos_;
+        return true;
+    }
+    bool Peek(const char* word) override { return pos_ < tokens_.size() && tokens_[pos_] == word; }
+    std::string ReadName() override {
+        if (pos_ >= tokens_.size() || PeekNumber()) Fail("expected a name");
+        return tokens_[pos_++];
+    }
+    std::string ReadFilename() override { return ReadName(); }
+    bool PeekFilename() override { return pos_ < tokens_.size() && !PeekNumber(); }
+    Surface ReadSurface() override { return Surface{}; }
+    bool FlipNormals() const override { return false; }
+    SourceLocation Location() const override { return {}; }
+    void Warn(const std::string& message) override { warnings.push_back(message); }
+    void Advise(const std::string& message) override { warnings.push_back(message); }
+    [[noreturn]] void Fail(const std::string& message) override {
+        throw FatalError(Severity::Abort, message);
+    }
+    bool AtEnd() const { return pos_ == tokens_.size(); }
+
+    std::vector<std::string> warnings;
+
+  private:
+    std::vector<std::string> tokens_;
+    size_t pos_ = 0;
+};
+
+std::shared_ptr<Primitive> Parse(const std::string& text) {
+    TokenReader reader(text);
+    std::shared_ptr<Primitive> p = ImplicitSurface::Create(reader);
+    EXPECT_TRUE(reader.AtEnd());
+    return p;
+}
+
+std::optional<double> Hit(const Primitive& p, const Ray& ray, PrimitiveHit* out = nullptr) {
+    PrimitiveHit hit;
+    if (!p.Intersect(ray, 1e-5, 1e9, hit)) return std::nullopt;
+    if (out) *out = hit;
+    return hit.t;
+}
+
+TEST(ImplicitSurface, SinglePointIsSphereWithOutwardNormal) {
+    auto p = Parse("threshold 1 field quadratic 0.5 2 1.2 point a 0 0 0 end");
+    ASSERT_TRUE(p);
+    EXPECT_TRUE(p->IsClosed());
+    PrimitiveHit hit;
+    Ray ray{{0, 0, -5}, {0, 0, 1}};
+    auto t = Hit(*p, ray, &hit);
+    ASSERT_TRUE(t.has_value());
+    EXPECT_NEAR(*t, 4.5, 1e-7);
+    SurfaceNormals n = p->Normal(ray.At(*t), hit);
+    EXPECT_NEAR(n.geometric.z, -1, 1e-9);
+    // A tilted hit: the normal is radial.
+    Ray tilted{{0.3, 0, -5}, {0, 0, 1}};
+    auto t2 = Hit(*p, tilted, &hit);
+    ASSERT_TRUE(t2.has_value());
+    Vec3 q = tilted.At(*t2);
+    SurfaceNormals n2 = p->Normal(q, hit);
+    EXPECT_NEAR(Dot(n2.shading, Normalize(q)), 1, 1e-9);
+    EXPECT_TRUE(p->Bounds().Contains(q));
+}
+
+TEST(ImplicitSurface, InvalidKernelFailsNamingTheSkeleton) {
+    TokenReader reader("field linear 1 2 3 point arm 0 0 0 end");
+    try {
+        ImplicitSurface::Create(reader);
+        FAIL() << "expected a failure";
+    } catch (const FatalError& e) {
+        EXPECT_NE(std::string(e.what()).find("'arm'"), std::string::npos) << e.what();
+    }
+}
+
+TEST(ImplicitSurface, UnknownStatementAndUnknownBlendNameFail) {
+    TokenReader bad("point a 0 0 0 sphere 1 end");
+    EXPECT_THROW(ImplicitSurface::Create(bad), FatalError);
+    TokenReader badBlend("point a 0 0 0 blend a b end");
+    EXPECT_THROW(ImplicitSurface::Create(badBlend), FatalError);
+    TokenReader twice("point a 0 0 0 point a 1 0 0 end");
+    EXPECT_THROW(ImplicitSurface::Create(twice), FatalError);
+}
+
+TEST(ImplicitSurface, BlendStatementsSelectPairs) {
+    // a and b overlap but do not blend (union, crease at x = 0 with y = ±0.4); b and c do.
+    auto p = Parse("field quadratic 0.5 2 1.2 point a -0.3 0 0 point b 0.3 0 0 "
+                   "point c 0.3 2 0 blend b c end");
+    ASSERT_TRUE(p);
+    auto t = Hit(*p, {{0, -5, 0}, {0, 1, 0}});
+    ASSERT_TRUE(t.has_value());
+    EXPECT_NEAR(*t, 4.6, 1e-7);
+    auto blended = Parse("field quadratic 0.5 2 1.2 point a -0.3 0 0 point b 0.3 0 0 end");
+    auto tb = Hit(*blended, {{0, -5, 0}, {0, 1, 0}});
+    ASSERT_TRUE(tb.has_value());
+    EXPECT_LT(*tb, 4.59);
+}
+
+TEST(ImplicitSurface, Kb89MethodMatchesPatches) {
+    std::string body = "field quadratic 0.35 2.4 0.9 point a 0 0 0 point b 0.5 0.1 0 "
+                       "segment s -0.5 -0.4 0 0.3 0.6 0.2 weight 0.8 "
+                       "point hole 0.2 0 0.3 weight -0.5 field blob 1 0.4 "
+                       "cylinder c 0.1 0 0 -1 0 0 -0.5 box bx 0.5 0.5 0.5 0.7 0.7 0.7 "
+                       "triangle tr 1 0 0 1.2 0 0 1 0.2 0 circle ring 0.3 -0.8 0 0 0 1 0 "
+                       "polyline pl 3 0 1 0 0.3 1 0 0.3 1.3 0.3 ";
+    auto patches = Parse(body + "end");
+    auto kb89 = Parse(body + "method kb89 octree 4 end");
+    ASSERT_TRUE(patches && kb89);
+    int hits = 0;
+    for (int i = 0; i < 400; ++i) {
+        double a = 0.1 * i, b = 0.037 * i;
+        Vec3 o{5 * std::cos(a) * std::cos(b), 5 * std::sin(a) * std::cos(b), 5 * std::sin(b)};
+        Vec3 target{0.4 * std::sin(3.1 * i), 0.4 * std::cos(1.7 * i), 0.3 * std::sin(0.7 * i)};
+        Ray ray{o, Normalize(target - o)};
+        auto t1 = Hit(*patches, ray);
+        auto t2 = Hit(*kb89, ray);
+        ASSERT_EQ(t1.has_value(), t2.has_value()) << i;
+        if (t1) {
+            ++hits;
+            EXPECT_NEAR(*t1, *t2, 2e-7) << i;
+        }
+    }
+    EXPECT_GT(hits, 100);
+}
+
+TEST(ImplicitSurface, AnimatedSkeletonsRebuildPerFrame) {
+    auto p = Parse("field quadratic 0.5 2 1.2 point a TIME 0 0 end");
+    ASSERT_TRUE(p);
+    Ray ray{{-5, 0, 0}, {1, 0, 0}};
+    EXPECT_NEAR(*Hit(*p, ray), 4.5, 1e-7);
+    p->PrepareFrame(1.0);
+    EXPECT_NEAR(*Hit(*p, ray), 5.5, 1e-7);
+    EXPECT_TRUE(p->Bounds().Contains({1.5, 0, 0}));
+}
+
+TEST(ImplicitSurface, NoPositiveSkeletonIsDiscardedWithWarning) {
+    TokenReader reader("point a 0 0 0 weight -1 end");
+    EXPECT_EQ(ImplicitSurface::Create(reader), nullptr);
+    EXPECT_EQ(reader.warnings.size(), 1u);
+}
+
+}  // namespace
+}  // namespace rs
