@@ -26,7 +26,7 @@ struct OctreeCounters {
     CounterId test0bis = RegisterCounter("Implicit test 0bis roots");
     CounterId test1 = RegisterCounter("Implicit test 1 (L) rejections");
     CounterId test2bisChord = RegisterCounter("Implicit test 2bis chord rejections");
-    CounterId test2bisSlope = RegisterCounter("Implicit test 2bis slope rejections");
+    CounterId monotoneNoRoot = RegisterCounter("Implicit monotone same-sign rejections");
     CounterId test3 = RegisterCounter("Implicit test 3 single-root intervals");
     CounterId splits = RegisterCounter("Implicit interval splits");
     CounterId ridders = RegisterCounter("Implicit Ridders calls");
@@ -152,7 +152,7 @@ class RaySearch {
             double slope = Dot(tree_.GetField().Gradient(ray_.At(m)), ray_.dir);
             if (std::abs(slope) > gt_ * lambda / 2) {
                 if (!signChange) {
-                    Count(Counters().test2bisSlope);
+                    Count(Counters().monotoneNoRoot);
                     return false;
                 }
                 if (s_.useTest3) {
