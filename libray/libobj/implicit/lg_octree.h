@@ -45,8 +45,9 @@
 // otherwise g is evaluated at its midpoint and a sign opposite to the ends' reports the
 // midpoint as a root (the ray enters and leaves within the segment); otherwise no root is
 // reported and the segment is counted as unresolved. So a ray is reported as hitting only
-// where a sign change was observed, and tangential contacts that dip below the surface by
-// less than what the samples can see (about Gt·minWidth²/8) are misses.
+// where a sign change was observed, and tangential contacts shorter than minWidth that rise
+// above the threshold by less than Gt·minWidth²/32 (the chord bound on each half) are
+// misses.
 //
 // Guarantee: with sound bounds, every root returned lies within `tolerance` of a sign
 // change of g along the ray, and no sign change earlier along the ray (in leaves wider
