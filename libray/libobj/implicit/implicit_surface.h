@@ -19,7 +19,8 @@
 //     its own `field ...`
 //   blend Name Name [Name...]   every pair of the listed skeletons blends. Without any
 //                          blend statement all overlapping skeletons blend (automatic
-//                          neighbour lists); with one or more, only declared pairs do.
+//                          neighbour lists); with one or more, only declared pairs do
+//                          (a negative skeleton then carves only those it blends with).
 //   end
 // Skeleton numbers, weights and field parameters may be animated expressions; the object
 // is then rebuilt by PrepareFrame for each frame (Bounds() describes the current frame).
