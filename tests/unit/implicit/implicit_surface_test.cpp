@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -184,6 +186,31 @@ TEST(ImplicitSurface, NoPositiveSkeletonIsDiscardedWithWarning) {
     TokenReader reader("point a 0 0 0 weight -1 end");
     EXPECT_EQ(ImplicitSurface::Create(reader), nullptr);
     EXPECT_EQ(reader.warnings.size(), 1u);
+}
+
+// examples/implicit.ray: the articulated ring's two ends overlap without blending, so a ray
+// through their overlap meets the union of two end caps of radius e = 0.42 around the end
+// points (±0.4104, 0, 0.5724): half-chord sqrt(0.42² − 0.4104²) at x = 0.
+TEST(ImplicitSurface, ExampleRingEndsDoNotBlend) {
+    std::ifstream in(RAYSHADE_SOURCE_DIR "/examples/implicit.ray");
+    ASSERT_TRUE(in.good());
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string scene = text.str();
+    size_t begin = scene.find("implicit skin");
+    ASSERT_NE(begin, std::string::npos);
+    begin += std::string("implicit skin").size();
+    size_t end = scene.find("\nend", begin);
+    ASSERT_NE(end, std::string::npos);
+    std::string block = scene.substr(begin, end + 4 - begin);
+    for (char& c : block) {
+        if (c == '\n' || c == '\t') c = ' ';
+    }
+    auto ring = Parse(block);
+    ASSERT_TRUE(ring);
+    auto t = Hit(*ring, {{0, -5, 0.5724}, {0, 1, 0}});
+    ASSERT_TRUE(t.has_value());
+    EXPECT_NEAR(*t, 5 - std::sqrt(0.42 * 0.42 - 0.4104 * 0.4104), 1e-6);
 }
 
 }  // namespace
