@@ -81,7 +81,9 @@ struct OctreeSettings {
     bool useHeuristic4 = true;
     bool useHeuristic5 = true;
     double h5GRatio = 0.9;  // "not too different": children keep >= 90 % of the parent's G
-    // Node memory per tree (internal nodes 32 bytes, leaves 16 bytes).
+    // Node memory per tree (internal nodes 32 bytes, leaves 16 bytes). A cell subdivides
+    // only while one more internal node and eight leaves fit, so the tree may overshoot the
+    // budget by at most that much (160 bytes) per level of the path being built.
     std::size_t memoryBudget = std::size_t(64) << 20;
 
     // Search. Root accuracy and splitting floor, as object-space distances.

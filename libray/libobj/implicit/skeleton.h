@@ -66,8 +66,8 @@ const char* SkeletonKindName(const Skeleton& skeleton);
 double SkeletonDistance(const Skeleton& skeleton, const Vec3& p, Vec3& closest);
 double SkeletonDistance(const Skeleton& skeleton, const Vec3& p);
 
-// A box containing every point of the skeleton (exact for all kinds but the circle and the
-// cylinder, whose boxes are tight up to the usual disc-extent formula).
+// The smallest axis-aligned box containing the skeleton (circle and cylinder boxes use the
+// exact extent r·sqrt(1 − n_i²) of a disc of radius r with unit normal n along axis i).
 Bounds3 SkeletonBounds(const Skeleton& skeleton);
 
 struct DistanceRange {
