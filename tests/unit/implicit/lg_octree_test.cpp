@@ -262,6 +262,49 @@ TEST(LGOctree, AutomaticPatchesMatchPlainSum) {
     }
 }
 
+// Every heuristic and test is an optimisation: switching any one off (or all of them, the
+// KB89 preset) changes the work, never the first hits.
+TEST(LGOctree, EverySwitchPreservesTheFirstHits) {
+    Rng rng(99);
+    std::vector<FieldTerm> terms;
+    for (int i = 0; i < 10; ++i) {
+        terms.push_back({"p", PointSkeleton{RandomPoint(rng, -1, 1)},
+                         Kernel::GascuelQuadratic(0.35, 2.4, 0.9), i == 9 ? -0.7 : 1.0});
+    }
+    std::vector<OctreeSettings> variants(14);
+    variants[1].useValueRange = false;
+    variants[2].useHeuristic1 = false;
+    variants[3].useHeuristic1bis = false;
+    variants[4].useHeuristic3 = false;
+    variants[5].useHeuristic3bis = false;
+    variants[6].useHeuristic4 = false;
+    variants[7].useHeuristic5 = false;
+    variants[8].useTest0bis = false;
+    variants[9].useTest1 = false;
+    variants[10].useTest2bis = false;
+    variants[11].useTest3 = false;
+    variants[12] = OctreeSettings::Kb89();
+    variants[13].maxDepth = 0;
+    std::vector<Scene> scenes;
+    for (const OctreeSettings& s : variants) scenes.emplace_back(terms, 1.0, s);
+    int hits = 0;
+    for (uint64_t seed = 1; seed <= 150; ++seed) {
+        Rng r(seed);
+        Vec3 o = RandomUnit(r) * 4;
+        Ray ray{o, Normalize(RandomPoint(r, -1, 1) - o)};
+        auto want = scenes[0].Hit(ray);
+        hits += want ? 1 : 0;
+        for (size_t v = 1; v < scenes.size(); ++v) {
+            auto got = scenes[v].Hit(ray);
+            ASSERT_EQ(want.has_value(), got.has_value()) << "variant " << v << " seed " << seed;
+            if (want) {
+                EXPECT_NEAR(*got, *want, 2e-7) << "variant " << v << " seed " << seed;
+            }
+        }
+    }
+    EXPECT_GT(hits, 50);
+}
+
 // Explicit blend graph with no declared pair: the union of separate spheres; with the
 // pair declared, the blended surface bulges between them.
 TEST(LGOctree, ExplicitBlendListsGiveUnionOfSpheres) {
