@@ -29,6 +29,7 @@ struct OctreeCounters {
     CounterId monotoneNoRoot = RegisterCounter("Implicit monotone same-sign rejections");
     CounterId test3 = RegisterCounter("Implicit test 3 single-root intervals");
     CounterId splits = RegisterCounter("Implicit interval splits");
+    CounterId segmentBounds = RegisterCounter("Implicit segment bounds");
     CounterId ridders = RegisterCounter("Implicit Ridders calls");
     CounterId riddersIterations = RegisterCounter("Implicit Ridders iterations");
     CounterId floorRoots = RegisterCounter("Implicit minimum-width roots");
@@ -82,9 +83,7 @@ class RaySearch {
         double gb = G(b);
         cachedT_ = b;
         cachedG_ = gb;
-        lt_ = span.L * dirLength_;
-        gt_ = span.G * dirLength_ * dirLength_;
-        return Search(a, ga, b, gb);
+        return Search(a, ga, b, gb, span.L * dirLength_, span.G * dirLength_ * dirLength_);
     }
 
     std::optional<double> result;
@@ -129,28 +128,39 @@ class RaySearch {
         return false;
     }
 
-    bool Search(double a, double ga, double b, double gb) {
+    // lt, gt: the parametric bounds Lt, Gt valid on [a, b].
+    bool Search(double a, double ga, double b, double gb, double lt, double gt) {
         double lambda = b - a;
         if (s_.useTest0bis && ga == 0) {
             Count(Counters().test0bis);
             if (Candidate(a)) return true;
         }
         if (lambda <= floorT_) return Floor(a, ga, b, gb);
+        if (!std::isfinite(gt)) {
+            // The leaf touches a point where F is not C² (a linear kernel's skeleton, a
+            // circle's axis, a polyline's kink): bound the segment's own box instead, which
+            // is finite once the segment avoids those points (research note §5's local
+            // bounds). Both bounds hold on [a, b]; keep the smaller.
+            Count(Counters().segmentBounds);
+            FieldBound local = tree_.GetField().Bound(Bounds3(ray_.At(a), ray_.At(b)));
+            lt = std::min(lt, local.L * dirLength_);
+            gt = local.G * dirLength_ * dirLength_;
+        }
         bool signChange = Inside(ga) != Inside(gb) || gb == 0;
         if (!signChange) {
-            if (s_.useTest1 && std::abs(ga) + std::abs(gb) > lt_ * lambda) {
+            if (s_.useTest1 && std::abs(ga) + std::abs(gb) > lt * lambda) {
                 Count(Counters().test1);
                 return false;
             }
-            if (s_.useTest2bis && std::min(std::abs(ga), std::abs(gb)) > gt_ * lambda * lambda / 8) {
+            if (s_.useTest2bis && std::min(std::abs(ga), std::abs(gb)) > gt * lambda * lambda / 8) {
                 Count(Counters().test2bisChord);
                 return false;
             }
         }
         double m = 0.5 * (a + b);
-        if ((s_.useTest3 || (s_.useTest2bis && !signChange)) && std::isfinite(gt_)) {
+        if ((s_.useTest3 || (s_.useTest2bis && !signChange)) && std::isfinite(gt)) {
             double slope = Dot(tree_.GetField().Gradient(ray_.At(m)), ray_.dir);
-            if (std::abs(slope) > gt_ * lambda / 2) {
+            if (std::abs(slope) > gt * lambda / 2) {
                 if (!signChange) {
                     Count(Counters().monotoneNoRoot);
                     return false;
@@ -163,7 +173,7 @@ class RaySearch {
         }
         Count(Counters().splits);
         double gm = G(m);
-        return Search(a, ga, m, gm) || Search(m, gm, b, gb);
+        return Search(a, ga, m, gm, lt, gt) || Search(m, gm, b, gb, lt, gt);
     }
 
     const LGOctree& tree_;
@@ -172,7 +182,6 @@ class RaySearch {
     double tMin_, tMax_;
     const std::function<bool(double)>& accept_;
     double dirLength_, tolT_, floorT_;
-    double lt_ = 0, gt_ = 0;
     double cachedT_ = std::nan(""), cachedG_ = 0;
 };
 
@@ -247,7 +256,9 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth) {
         Count(c.h2Fired);
         return MakeLeaf(fb.L, fb.G);
     }
-    if (depth >= s.minDepth) {
+    // Heuristics 3 and 3bis stop early only where G is finite: a leaf with infinite G would
+    // leave the search no curvature bound at all.
+    if (depth >= s.minDepth && std::isfinite(fb.G)) {
         if (s.useHeuristic3) {
             bool anyIn = gc > 0, anyOut = gc <= 0;
             for (int i = 0; i < 8 && !(anyIn && anyOut); ++i) {

@@ -13,9 +13,10 @@
 //   1bis   |g(C)| > b‖∇F(C)‖ + ½b²G → Full/Empty. Sound: Taylor along C→p with integral
 //          remainder, F being C¹ and piecewise C² (the paper omits the ½: conservative).
 //   2      depth == maxDepth → leaf (always on: it guarantees termination).
-//   3      depth >= minDepth and the signs of g at the 8 corners and the centre differ →
-//          leaf.
-//   3bis   depth >= minDepth and b/min < dRatio → leaf, min being the smallest distance to
+//   3      depth >= minDepth, G finite, and the signs of g at the 8 corners and the centre
+//          differ → leaf.
+//   3bis   depth >= minDepth, G finite, and b/min < dRatio → leaf, min being the smallest
+//          distance to
 //          an active skeleton (subdividing a cell small compared with its distance to the
 //          skeletons barely tightens L and G). dRatio = −1 never fires (≈ KB89).
 //   budget when the node memory would exceed memoryBudget → leaf, and one warning per tree.
@@ -37,9 +38,10 @@
 //          one root, present iff the ends' signs differ: solve with Ridders, or report no
 //          root when the signs agree (the same conclusion as 2bis's second part).
 //          Otherwise split at tm and search the near half first.
-// Tests needing G are skipped where G is infinite (cells touching a linear kernel's
-// skeleton, a circle's axis, a polyline's kinks): such spans are split down to the floor,
-// pruned by test 1 where possible.
+// Where the leaf's G is infinite (it touches a linear kernel's skeleton, a circle's axis or
+// a polyline's kinks), each segment is bounded by Field::Bound over its own box (a per-
+// segment bound in the spirit of segment tracing), finite once the segment avoids those
+// points; tests needing G are skipped while it stays infinite.
 // Floor (minimum width / tangency) policy, identical for every ray: a segment no longer
 // than minWidth whose ends differ in sign yields its root (Ridders to the tolerance);
 // otherwise g is evaluated at its midpoint and a sign opposite to the ends' reports the

@@ -124,6 +124,25 @@ TEST(LGOctree, GrazingRaysJustInsideHitJustOutsideMiss) {
     }
 }
 
+// A coarse tree whose leaves contain a linear kernel's skeleton (G infinite there): the
+// search bounds each segment's own box instead, so grazing rays stay exact and cheap.
+TEST(LGOctree, InfiniteCurvatureLeavesStayExactAndCheap) {
+    double e = 0.5;
+    OctreeSettings s;
+    s.maxDepth = 1;
+    Scene scene({{"p", PointSkeleton{{0, 0, 0}}, Kernel::GascuelLinear(e, 2, 1.2), 1}}, 1.0, s);
+    for (double delta : {1e-3, 1e-6, 1e-9}) {
+        ResetStats();
+        Ray ray{{e * (1 - delta), -5, 0.0}, {0, 1, 0}};
+        auto got = scene.Hit(ray);
+        ASSERT_TRUE(got.has_value()) << delta;
+        EXPECT_NEAR(*got, 5 - e * std::sqrt(delta * (2 - delta)), 1e-7) << delta;
+        EXPECT_LT(CounterTotal("Implicit field evaluations"), 2000u) << delta;
+        EXPECT_GT(CounterTotal("Implicit segment bounds"), 0u) << delta;
+        EXPECT_FALSE(scene.Hit({{e * (1 + delta), -5, 0.0}, {0, 1, 0}}).has_value()) << delta;
+    }
+}
+
 TEST(LGOctree, RaysStartingInsideFindTheExit) {
     for (const Kernel& k : SphereKernels()) {
         double e = k.Thickness();
