@@ -16,9 +16,9 @@
 //   3      depth >= minDepth, G finite, and the signs of g at the 8 corners and the centre
 //          differ → leaf.
 //   3bis   depth >= minDepth, G finite, and b/min < dRatio → leaf, min being the smallest
-//          distance to
-//          an active skeleton (subdividing a cell small compared with its distance to the
-//          skeletons barely tightens L and G). dRatio = −1 never fires (≈ KB89).
+//          distance to an active skeleton (subdividing a cell small compared with its
+//          distance to the skeletons barely tightens L and G). dRatio = −1 never fires
+//          (≈ KB89).
 //   budget when the node memory would exceed memoryBudget → leaf, and one warning per tree.
 //   4      after subdivision: all eight children Full (or all Empty) → parent likewise.
 //   5      after subdivision: all children leaves and max child G >= h5GRatio·G → one
