@@ -136,15 +136,17 @@ class RaySearch {
             if (Candidate(a)) return true;
         }
         if (lambda <= floorT_) return Floor(a, ga, b, gb);
-        if (!std::isfinite(gt)) {
-            // The leaf touches a point where F is not C² (a linear kernel's skeleton, a
-            // circle's axis, a polyline's kink): bound the segment's own box instead, which
-            // is finite once the segment avoids those points (research note §5's local
-            // bounds). Both bounds hold on [a, b]; keep the smaller.
+        if (!(gt * lambda <= 2 * lt)) {
+            // G is too weak for test 3 ever to fire here (|g'| <= Lt < Gt·λ/2), typically
+            // because the leaf touches a point where F is not C² (a linear kernel's
+            // skeleton, a circle's axis, a polyline's kink) or comes very close to one:
+            // bound the segment's own box instead, which is finite once the segment avoids
+            // those points (research note §5's local bounds). Both bounds hold on [a, b];
+            // keep the smaller L and the segment's G.
             Count(Counters().segmentBounds);
             FieldBound local = tree_.GetField().Bound(Bounds3(ray_.At(a), ray_.At(b)));
             lt = std::min(lt, local.L * dirLength_);
-            gt = local.G * dirLength_ * dirLength_;
+            gt = std::min(gt, local.G * dirLength_ * dirLength_);
         }
         bool signChange = Inside(ga) != Inside(gb) || gb == 0;
         if (!signChange) {

@@ -38,10 +38,11 @@
 //          one root, present iff the ends' signs differ: solve with Ridders, or report no
 //          root when the signs agree (the same conclusion as 2bis's second part).
 //          Otherwise split at tm and search the near half first.
-// Where the leaf's G is infinite (it touches a linear kernel's skeleton, a circle's axis or
-// a polyline's kinks), each segment is bounded by Field::Bound over its own box (a per-
-// segment bound in the spirit of segment tracing), finite once the segment avoids those
-// points; tests needing G are skipped while it stays infinite.
+// Where G is too weak for test 3 ever to fire (Gt·λ > 2Lt; e.g. infinite because the leaf
+// touches a linear kernel's skeleton, a circle's axis or a polyline's kinks), each segment
+// is bounded by Field::Bound over its own box (a per-segment bound in the spirit of segment
+// tracing), finite once the segment avoids those points; tests needing G are skipped while
+// it stays infinite.
 // Floor (minimum width / tangency) policy, identical for every ray: a segment no longer
 // than minWidth whose ends differ in sign yields its root (Ridders to the tolerance);
 // otherwise g is evaluated at its midpoint and a sign opposite to the ends' reports the
