@@ -184,7 +184,6 @@ KernelBounds Kernel::Bounds(double rmin, double rmax) const {
             overR = slope / a;
         }
         kb.maxSlope = std::max(kb.maxSlope, slope);
-        kb.maxSecond = std::max(kb.maxSecond, second);
         kb.maxCurvature = std::max({kb.maxCurvature, second, overR});
     }
     return kb;

@@ -35,7 +35,6 @@ struct KernelBounds {
     // max over the interval of max(|f''|, |f'|/r), one-sided values of f'' at the jumps
     // included; +infinity when the interval reaches r = 0 and |f'|/r is unbounded there.
     double maxCurvature = 0;
-    double maxSecond = 0;  // max |f''| alone (both sides of the jumps)
 };
 
 struct KernelStatus {

@@ -7,8 +7,9 @@
 //   - an axis-aligned box containing the skeleton;
 //   - a conservative range [min, max] of the distance from the skeleton to the points of
 //     an axis-aligned box (every true distance lies inside it);
-//   - a bound on the norm of the distance function's Hessian over a box, used by the field
-//     layer for its second-derivative bound G (see DistanceCurvatureBound).
+//   - what the field layer needs for its second-derivative bound G: whether the kind is
+//     convex, and for the others a bound on the extra curvature of the distance function
+//     over a box (SkeletonIsConvex, ExtraDistanceCurvature).
 // Solid kinds (box, cylinder) have distance 0 inside. Everything is in one (object) space.
 #pragma once
 
