@@ -99,6 +99,9 @@ struct OctreeSettings {
     bool useTest3 = true;
 
     // Kalra & Barr 1989 as summarised by Gascuel: heuristics 1, 2, 3 and tests 1, 2, 3 only.
+    // The per-segment bounds stay on: KB89's G lacked the |f'|/r term, so it was never
+    // infinite, while ours is near linear-kernel skeletons and without them the search
+    // would split such spans down to the floor.
     static OctreeSettings Kb89();
 };
 
