@@ -124,7 +124,8 @@ constexpr const char* kSkeletonKinds[] = {"point",    "segment", "polyline", "ci
 // True when the next token starts a statement of the block (or ends it), so open-ended
 // name lists stop there.
 bool PeekStatement(ArgReader& args) {
-    for (const char* word : {"end", "threshold", "tolerance", "octree", "method", "field", "blend"}) {
+    for (const char* word :
+         {"end", "threshold", "tolerance", "octree", "method", "field", "blend"}) {
         if (args.Peek(word)) return true;
     }
     for (const char* kind : kSkeletonKinds) {
@@ -312,13 +313,15 @@ bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
         double t0 = tMin, t1 = tMax;
         if (patches_[i].Box().ClipRay(ray, t0, t1)) entries.push_back({t0, static_cast<int>(i)});
     }
-    std::sort(entries.begin(), entries.end(),
-              [](const Entry& a, const Entry& b) { return a.t < b.t || (a.t == b.t && a.patch < b.patch); });
+    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+        return a.t < b.t || (a.t == b.t && a.patch < b.patch);
+    });
     double best = tMax;
     bool found = false;
     for (const Entry& e : entries) {
         if (e.t >= best) break;
-        std::optional<double> t = PatchFirstRoot(patches_[e.patch], trees_[e.patch], ray, tMin, best);
+        std::optional<double> t =
+            PatchFirstRoot(patches_[e.patch], trees_[e.patch], ray, tMin, best);
         if (t) {
             best = *t;
             hit.part = e.patch;

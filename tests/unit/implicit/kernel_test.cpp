@@ -124,7 +124,8 @@ TEST(Kernel, IntervalBoundsHoldOnSamples) {
             double r = a + (b - a) * i / 200.0;
             ASSERT_GE(f.Value(r), kb.valueMin - slack) << "seed " << seed;
             ASSERT_LE(f.Value(r), kb.valueMax + slack) << "seed " << seed;
-            ASSERT_LE(std::abs(f.Derivative(r)), kb.maxSlope * (1 + 1e-12) + slack) << "seed " << seed;
+            ASSERT_LE(std::abs(f.Derivative(r)), kb.maxSlope * (1 + 1e-12) + slack)
+                << "seed " << seed;
             for (double side : {-1e-12, 0.0, 1e-12}) {
                 double rs = std::clamp(r + side, a, b);
                 ASSERT_LE(std::abs(f.SecondDerivative(rs)), kb.maxCurvature * (1 + 1e-12) + slack)

@@ -88,8 +88,8 @@ TEST(LGOctree, BlobPointIsSphereOfAnalyticRadius) {
 // A segment skeleton is a capsule of radius e.
 TEST(LGOctree, SegmentSkeletonIsCapsule) {
     double e = 0.4;
-    Scene scene({{"s", SegmentSkeleton{{-1, 0, 0}, {1, 0, 0}}, Kernel::GascuelQuadratic(e, 2, 1), 1}},
-                1.0);
+    Scene scene(
+        {{"s", SegmentSkeleton{{-1, 0, 0}, {1, 0, 0}}, Kernel::GascuelQuadratic(e, 2, 1), 1}}, 1.0);
     auto side = scene.Hit({{0.3, 0, -5}, {0, 0, 1}});
     ASSERT_TRUE(side.has_value());
     EXPECT_NEAR(*side, 5 - e, 1e-7);
@@ -254,7 +254,8 @@ TEST(LGOctree, AutomaticPatchesMatchPlainSum) {
         Scene plain(terms, 1.0);
         std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
         std::vector<LGOctree> trees;
-        for (const Patch& p : patches) trees.emplace_back(p.GetField(), 1.0, p.Box(), OctreeSettings{});
+        for (const Patch& p : patches)
+            trees.emplace_back(p.GetField(), 1.0, p.Box(), OctreeSettings{});
         int hits = 0;
         for (uint64_t seed = 1; seed <= 400; ++seed) {
             Rng r(sceneSeed * 1000 + seed);
@@ -266,7 +267,8 @@ TEST(LGOctree, AutomaticPatchesMatchPlainSum) {
                 auto t = PatchFirstRoot(patches[i], trees[i], ray, 1e-5, got ? *got : 1e9);
                 if (t && (!got || *t < *got)) got = t;
             }
-            ASSERT_EQ(want.has_value(), got.has_value()) << "scene " << sceneSeed << " seed " << seed;
+            ASSERT_EQ(want.has_value(), got.has_value())
+                << "scene " << sceneSeed << " seed " << seed;
             double end = want ? *want - 1e-6 : 10.0;
             for (double t = 1e-5; t < end; t += 1e-3) {
                 ASSERT_LE(plain.field.Value(ray.At(t)), 1.0)
@@ -337,8 +339,9 @@ TEST(LGOctree, AllSkeletonKindsMatchBruteForce) {
             Kernel k = i % 3 == 0   ? Kernel::GascuelLinear(0.25, 2.0, 0.8)
                        : i % 3 == 1 ? Kernel::GascuelQuadratic(0.3, 1.5, 0.9)
                                     : Kernel::Blob(2.0, 0.9);
-            terms.push_back({"t", testing::RandomSkeleton(rng, (i + static_cast<int>(sceneSeed)) % 7),
-                             k, i == 4 ? -0.5 : 1.0});
+            terms.push_back({"t",
+                             testing::RandomSkeleton(rng, (i + static_cast<int>(sceneSeed)) % 7), k,
+                             i == 4 ? -0.5 : 1.0});
         }
         Scene scene(terms, 1.0);
         for (uint64_t seed = 1; seed <= 60; ++seed) {
@@ -395,7 +398,8 @@ TEST(LGOctree, ExplicitBlendListsGiveUnionOfSpheres) {
     };
     std::vector<Patch> separate = BuildPatches(terms, BlendMode::Explicit, {{1, 2}});
     std::vector<LGOctree> trees;
-    for (const Patch& p : separate) trees.emplace_back(p.GetField(), 1.0, p.Box(), OctreeSettings{});
+    for (const Patch& p : separate)
+        trees.emplace_back(p.GetField(), 1.0, p.Box(), OctreeSettings{});
     for (uint64_t seed = 1; seed <= 300; ++seed) {
         Rng rng(seed);
         Vec3 o = Vec3{0, 0, 0} + RandomUnit(rng) * 4;
@@ -424,7 +428,8 @@ TEST(LGOctree, ExplicitBlendListsGiveUnionOfSpheres) {
     EXPECT_NEAR(*t, 5 - 0.4, 1e-7);
     std::vector<Patch> blended = BuildPatches(terms, BlendMode::Automatic);
     std::vector<LGOctree> blendedTrees;
-    for (const Patch& p : blended) blendedTrees.emplace_back(p.GetField(), 1.0, p.Box(), OctreeSettings{});
+    for (const Patch& p : blended)
+        blendedTrees.emplace_back(p.GetField(), 1.0, p.Box(), OctreeSettings{});
     auto tb = firstHit(blended, blendedTrees, crease);
     ASSERT_TRUE(tb.has_value());
     EXPECT_LT(*tb, 5 - 0.4 - 0.01);  // blending fills the crease

@@ -26,7 +26,8 @@ std::optional<double> PatchesHit(const std::vector<FieldTerm>& terms, double thr
 // exactly one patch (the lowest index) accepts each root.
 TEST(Stability, CoincidentSkeletons) {
     for (int n = 1; n <= 5; ++n) {
-        std::vector<FieldTerm> terms(n, FieldTerm{"p", PointSkeleton{{0, 0, 0}}, Kernel::Blob(1, 1), 1});
+        std::vector<FieldTerm> terms(
+            n, FieldTerm{"p", PointSkeleton{{0, 0, 0}}, Kernel::Blob(1, 1), 1});
         double radius = std::sqrt(1 - std::sqrt(0.5 / n));
         auto t = PatchesHit(terms, 0.5, {{0.1, 0, -5}, {0, 0, 1}});
         ASSERT_TRUE(t.has_value()) << n;
@@ -62,8 +63,9 @@ TEST(Stability, HollowShellFromNegativeField) {
 // A skeleton scaled by σ (e, R × σ, k ÷ σ) is a sphere of radius σe.
 TEST(Stability, TinyComponents) {
     for (double sigma : {1e-1, 1e-3, 1e-5}) {
-        std::vector<FieldTerm> terms{
-            {"p", PointSkeleton{{0, 0, 0}}, Kernel::GascuelQuadratic(0.5 * sigma, 2 / sigma, 1.2 * sigma), 1}};
+        std::vector<FieldTerm> terms{{"p", PointSkeleton{{0, 0, 0}},
+                                      Kernel::GascuelQuadratic(0.5 * sigma, 2 / sigma, 1.2 * sigma),
+                                      1}};
         auto t = PatchesHit(terms, 1, {{0, 0, -5}, {0, 0, 1}});
         ASSERT_TRUE(t.has_value()) << sigma;
         EXPECT_NEAR(*t, 5 - 0.5 * sigma, 1e-7) << sigma;
