@@ -78,6 +78,14 @@ FieldBound Field::Bound(const Bounds3& box) const {
     return fb;
 }
 
+void Field::TermRange(int i, const Bounds3& box, double& lo, double& hi) const {
+    const FieldTerm& t = terms_[i];
+    DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
+    double near = t.weight * t.kernel.Value(r.min), far = t.weight * t.kernel.Value(r.max);
+    lo = std::min(near, far);
+    hi = std::max(near, far);
+}
+
 Bounds3 Field::SupportBounds() const {
     Bounds3 b;
     for (const FieldTerm& t : terms_) b.Extend(TermSupportBounds(t));

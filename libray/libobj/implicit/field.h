@@ -56,6 +56,8 @@ class Field {
     // and undefined for the linear one).
     Vec3 Gradient(const Vec3& p) const;
     FieldBound Bound(const Bounds3& box) const;
+    // [lo, hi] containing w_i f_i(d_i(p)) for every p in the box (f is monotone in d).
+    void TermRange(int i, const Bounds3& box, double& lo, double& hi) const;
 
     // The box outside of which every term vanishes (skeleton boxes padded by R).
     Bounds3 SupportBounds() const;

@@ -158,7 +158,7 @@ void ImplicitSurface::Build() {
     patches_ = BuildPatches(terms_, options_.blendMode, options_.blendPairs);
     trees_.reserve(patches_.size());
     for (const Patch& p : patches_) {
-        trees_.emplace_back(p.GetField(), threshold, p.Box(), options_.octree);
+        trees_.push_back(BuildPatchOctree(p, threshold, options_.octree));
         bounds_.Extend(p.Box());
     }
 }

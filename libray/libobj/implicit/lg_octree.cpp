@@ -14,6 +14,7 @@ namespace {
 struct OctreeCounters {
     CounterId cellsBuilt = RegisterCounter("Implicit octree cells built");
     CounterId rangeFired = RegisterCounter("Implicit octree value-range prunes");
+    CounterId patchFired = RegisterCounter("Implicit octree patch-rule prunes");
     CounterId h1Fired = RegisterCounter("Implicit octree heuristic 1 prunes");
     CounterId h1bisFired = RegisterCounter("Implicit octree heuristic 1bis prunes");
     CounterId h2Fired = RegisterCounter("Implicit octree heuristic 2 leaves");
@@ -197,14 +198,19 @@ OctreeSettings OctreeSettings::Kb89() {
     s.dRatio = -1;
     s.useHeuristic4 = false;
     s.useHeuristic5 = false;
+    s.usePredominancePruning = false;
     s.useTest0bis = false;
     s.useTest2bis = false;
     return s;
 }
 
 LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
-                   const OctreeSettings& settings)
-    : field_(std::move(field)), threshold_(threshold), box_(box), settings_(settings) {
+                   const OctreeSettings& settings, int ownTerm)
+    : field_(std::move(field)),
+      threshold_(threshold),
+      ownTerm_(ownTerm),
+      box_(box),
+      settings_(settings) {
     if (box_.IsEmpty()) return;
     root_ = Build(box_, 0);
     if (degraded_) {
@@ -217,6 +223,20 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
 
 std::size_t LGOctree::MemoryBytes() const {
     return internals_.size() * sizeof(Internal) + leaves_.size() * sizeof(Leaf);
+}
+
+// False when some other term's smallest value over the box exceeds the own term's largest
+// (strictly, so even a tie won by the lower index is impossible).
+bool LGOctree::OwnMayPredominate(const Bounds3& box) const {
+    double ownLo, ownHi;
+    field_.TermRange(ownTerm_, box, ownLo, ownHi);
+    for (int j = 0; j < field_.Size(); ++j) {
+        if (j == ownTerm_) continue;
+        double lo, hi;
+        field_.TermRange(j, box, lo, hi);
+        if (lo > ownHi) return false;
+    }
+    return true;
 }
 
 LGOctree::Ref LGOctree::MakeLeaf(double L, double G) {
@@ -238,6 +258,10 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth) {
             Count(c.rangeFired);
             return kEmptyRef;
         }
+    }
+    if (s.usePredominancePruning && ownTerm_ >= 0 && !OwnMayPredominate(box)) {
+        Count(c.patchFired);
+        return kEmptyRef;
     }
     Vec3 centre = box.Center();
     double b = HalfDiagonal(box);
@@ -372,6 +396,10 @@ std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tM
     RaySearch search(*this, ray, tMin, tMax, accept);
     Traverse(ray, tMin, tMax, [&search](const LeafSpan& span) { return search.Leaf(span); });
     return search.result;
+}
+
+LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings) {
+    return LGOctree(patch.GetField(), threshold, patch.Box(), settings, 0);
 }
 
 std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,

@@ -20,6 +20,10 @@
 //          distance to the skeletons barely tightens L and G). dRatio = −1 never fires
 //          (≈ KB89).
 //   budget when the node memory would exceed memoryBudget → leaf, and one warning per tree.
+//   patch  (Gascuel §3.4, patch octrees only) some neighbour's smallest contribution over
+//          the cell exceeds the own term's largest → Empty: no root in the cell can be
+//          accepted, so the tree only covers the part of the patch box where the own
+//          skeleton may predominate. Tested right after the value-range test.
 //   4      after subdivision: all eight children Full (or all Empty) → parent likewise.
 //   5      after subdivision: all children leaves and max child G >= h5GRatio·G → one
 //          leaf with the parent's L and G (still valid on every child).
@@ -70,11 +74,12 @@ namespace rs {
 
 struct OctreeSettings {
     // Octree depth limits (Gascuel's tables: max depth 4–10, min depth 3). minDepth is the
-    // "deep enough" of heuristics 3 and 3bis. On 60 blended point skeletons (research note
-    // §12 parameters) min depth 3 cut field plus gradient evaluations per ray from 160 to
-    // 120 against min depth 2, for about 5 KB of tree per patch; deeper trees buy little.
+    // "deep enough" of heuristics 3 and 3bis. Measured on 60 blended point skeletons (the
+    // research note's §12 parameters, 20 000 rays): min depth 2 / 3 / 4 / 5 gave 131 / 62 /
+    // 31 / 20 field plus gradient evaluations per ray for 1 / 4 / 10 / 29 KB of tree per
+    // patch and 1 / 1.5 / 4 / 13 ms of build per patch; 4 is the knee.
     int maxDepth = 6;
-    int minDepth = 3;
+    int minDepth = 4;
     bool useValueRange = true;
     bool useHeuristic1 = true;
     bool useHeuristic1bis = true;
@@ -83,6 +88,7 @@ struct OctreeSettings {
     double dRatio = 2;  // Gascuel's value; −1 disables 3bis
     bool useHeuristic4 = true;
     bool useHeuristic5 = true;
+    bool usePredominancePruning = true;  // the "patch" rule; needs an own term
     double h5GRatio = 0.9;  // "not too different": children keep >= 90 % of the parent's G
     // Node memory per tree (internal nodes 32 bytes, leaves 16 bytes). A cell subdivides
     // only while one more internal node and eight leaves fit, so the tree may overshoot the
@@ -115,8 +121,12 @@ enum class CellClass { Empty, Full, Leaf };
 
 class LGOctree {
   public:
-    // Builds the tree of g = F − T over `box` (the field is copied).
-    LGOctree(Field field, double threshold, const Bounds3& box, const OctreeSettings& settings);
+    // Builds the tree of g = F − T over `box` (the field is copied). With ownTerm >= 0 the
+    // tree serves a patch whose own term is field term `ownTerm`: cells where that term
+    // cannot predominate are marked Empty (the "patch" rule), so FirstRoot then only
+    // finds roots an `accept` predominance test could keep.
+    LGOctree(Field field, double threshold, const Bounds3& box, const OctreeSettings& settings,
+             int ownTerm = -1);
 
     const Field& GetField() const { return field_; }
     double Threshold() const { return threshold_; }
@@ -128,7 +138,8 @@ class LGOctree {
     void Traverse(const Ray& ray, double tMin, double tMax,
                   const std::function<bool(const LeafSpan&)>& visit) const;
 
-    // The class of the cell containing p (Empty outside the root box).
+    // The class of the cell containing p (Empty outside the root box). Full: g > 0 in the
+    // cell; Empty: g < 0 in the cell, or (patch rule) no predominant point in it.
     CellClass Classify(const Vec3& p) const;
 
     // The first t in (tMin, tMax) where g changes sign along the ray (to the tolerance) and
@@ -154,12 +165,14 @@ class LGOctree {
     };
 
     Ref Build(const Bounds3& box, int depth);
+    bool OwnMayPredominate(const Bounds3& box) const;
     Ref MakeLeaf(double L, double G);
     bool Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
                const std::function<bool(const LeafSpan&)>& visit) const;
 
     Field field_;
     double threshold_;
+    int ownTerm_;
     Bounds3 box_;
     OctreeSettings settings_;
     std::vector<Internal> internals_;
@@ -168,9 +181,12 @@ class LGOctree {
     bool degraded_ = false;
 };
 
+// The octree of a patch: its field over its box, with the patch rule for its own term.
+LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings);
+
 // The first root of a patch along the ray in (tMin, tMax): a root of the patch field where
 // the patch's own term predominates (patch.h), continuing past rejected roots. `octree`
-// must have been built from patch.GetField() over patch.Box().
+// must come from BuildPatchOctree(patch, ...).
 std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,
                                      const Ray& ray, double tMin, double tMax);
 

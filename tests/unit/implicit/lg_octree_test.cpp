@@ -255,7 +255,7 @@ TEST(LGOctree, AutomaticPatchesMatchPlainSum) {
         std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
         std::vector<LGOctree> trees;
         for (const Patch& p : patches)
-            trees.emplace_back(p.GetField(), 1.0, p.Box(), OctreeSettings{});
+            trees.push_back(BuildPatchOctree(p, 1.0, OctreeSettings{}));
         int hits = 0;
         for (uint64_t seed = 1; seed <= 400; ++seed) {
             Rng r(sceneSeed * 1000 + seed);
@@ -399,7 +399,7 @@ TEST(LGOctree, ExplicitBlendListsGiveUnionOfSpheres) {
     std::vector<Patch> separate = BuildPatches(terms, BlendMode::Explicit, {{1, 2}});
     std::vector<LGOctree> trees;
     for (const Patch& p : separate)
-        trees.emplace_back(p.GetField(), 1.0, p.Box(), OctreeSettings{});
+        trees.push_back(BuildPatchOctree(p, 1.0, OctreeSettings{}));
     for (uint64_t seed = 1; seed <= 300; ++seed) {
         Rng rng(seed);
         Vec3 o = Vec3{0, 0, 0} + RandomUnit(rng) * 4;
@@ -429,7 +429,7 @@ TEST(LGOctree, ExplicitBlendListsGiveUnionOfSpheres) {
     std::vector<Patch> blended = BuildPatches(terms, BlendMode::Automatic);
     std::vector<LGOctree> blendedTrees;
     for (const Patch& p : blended)
-        blendedTrees.emplace_back(p.GetField(), 1.0, p.Box(), OctreeSettings{});
+        blendedTrees.push_back(BuildPatchOctree(p, 1.0, OctreeSettings{}));
     auto tb = firstHit(blended, blendedTrees, crease);
     ASSERT_TRUE(tb.has_value());
     EXPECT_LT(*tb, 5 - 0.4 - 0.01);  // blending fills the crease

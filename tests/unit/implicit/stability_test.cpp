@@ -15,7 +15,7 @@ std::optional<double> PatchesHit(const std::vector<FieldTerm>& terms, double thr
     std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
     std::optional<double> best;
     for (const Patch& p : patches) {
-        LGOctree tree(p.GetField(), threshold, p.Box(), OctreeSettings{});
+        LGOctree tree = BuildPatchOctree(p, threshold, OctreeSettings{});
         auto t = PatchFirstRoot(p, tree, ray, tMin, best ? *best : 1e12);
         if (t) best = t;
     }
