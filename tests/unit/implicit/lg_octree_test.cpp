@@ -207,6 +207,32 @@ TEST(LGOctree, CellClassesAgreeWithSampling) {
     }
 }
 
+// Patch trees: a cell is Empty only where g < 0 or the own term cannot predominate.
+TEST(LGOctree, PatchRuleCellsHoldNoAcceptableRoot) {
+    Rng rng(5);
+    std::vector<FieldTerm> terms;
+    for (int i = 0; i < 8; ++i) {
+        terms.push_back({"p", PointSkeleton{RandomPoint(rng, -0.7, 0.7)},
+                         Kernel::GascuelQuadratic(0.35, 2.4, 0.9), 1});
+    }
+    int pruned = 0;
+    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+        LGOctree tree = BuildPatchOctree(patch, 1.0, OctreeSettings{});
+        for (int i = 0; i < 3000; ++i) {
+            Vec3 p = testing::RandomInBox(rng, tree.Box());
+            CellClass c = tree.Classify(p);
+            double g = patch.GetField().Value(p) - 1.0;
+            if (c == CellClass::Full) {
+                ASSERT_GT(g, 0);
+            } else if (c == CellClass::Empty && g >= 0) {
+                ASSERT_FALSE(patch.Predominates(p));
+                ++pruned;
+            }
+        }
+    }
+    EXPECT_GT(pruned, 100);  // the rule does fire inside the surface of other patches
+}
+
 TEST(LGOctree, MemoryBudgetDegradesWithWarningAndStaysExact) {
     std::vector<Diagnostic> seen;
     ErrorSink old = SetErrorSink([&seen](const Diagnostic& d) { seen.push_back(d); });
