@@ -161,6 +161,43 @@ void ImplicitSurface::Build() {
         trees_.push_back(BuildPatchOctree(p, threshold, options_.octree));
         bounds_.Extend(p.Box());
     }
+    bvh_.clear();
+    bvhOrder_.resize(patches_.size());
+    for (size_t i = 0; i < patches_.size(); ++i) bvhOrder_[i] = static_cast<int>(i);
+    if (!patches_.empty()) {
+        bvh_.emplace_back();
+        BuildBvh(0, 0, static_cast<int>(patches_.size()));
+    }
+}
+
+// Fills node `index` over the entries [first, first + count) of bvhOrder_, splitting them
+// at the median along the longest axis of their boxes' centres.
+void ImplicitSurface::BuildBvh(int index, int first, int count) {
+    Bounds3 box, centres;
+    for (int i = first; i < first + count; ++i) {
+        box.Extend(patches_[bvhOrder_[i]].Box());
+        centres.Extend(patches_[bvhOrder_[i]].Box().Center());
+    }
+    bvh_[index].box = box;
+    if (count <= kBvhLeafSize) {
+        bvh_[index].first = first;
+        bvh_[index].count = count;
+        return;
+    }
+    Vec3 extent = centres.Extent();
+    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    auto begin = bvhOrder_.begin() + first;
+    std::nth_element(begin, begin + count / 2, begin + count, [&](int a, int b) {
+        double ca = patches_[a].Box().Center()[axis], cb = patches_[b].Box().Center()[axis];
+        return ca < cb || (ca == cb && a < b);
+    });
+    // Children are allocated as a consecutive pair so one index addresses both.
+    int left = static_cast<int>(bvh_.size());
+    bvh_.emplace_back();
+    bvh_.emplace_back();
+    bvh_[index].left = left;
+    BuildBvh(left, first, count / 2);
+    BuildBvh(left + 1, first + count / 2, count - count / 2);
 }
 
 std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
@@ -302,30 +339,40 @@ bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
         hit.part = -1;
         return true;
     }
-    // Patches whose box the ray meets, nearest box entry first; stop once an entry lies
-    // beyond the best hit.
-    struct Entry {
-        double t;
-        int patch;
-    };
-    std::vector<Entry> entries;
-    for (size_t i = 0; i < patches_.size(); ++i) {
-        double t0 = tMin, t1 = tMax;
-        if (patches_[i].Box().ClipRay(ray, t0, t1)) entries.push_back({t0, static_cast<int>(i)});
-    }
-    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-        return a.t < b.t || (a.t == b.t && a.patch < b.patch);
-    });
+    // Front-to-back BVH walk over the patch boxes, each clipped to (tMin, best) so nodes
+    // beyond the best hit so far are skipped.
     double best = tMax;
     bool found = false;
-    for (const Entry& e : entries) {
-        if (e.t >= best) break;
-        std::optional<double> t =
-            PatchFirstRoot(patches_[e.patch], trees_[e.patch], ray, tMin, best);
-        if (t) {
-            best = *t;
-            hit.part = e.patch;
-            found = true;
+    int stack[64];
+    int top = 0;
+    if (!bvh_.empty()) stack[top++] = 0;
+    while (top > 0) {
+        const BvhNode& node = bvh_[stack[--top]];
+        double t0 = tMin, t1 = best;
+        if (!node.box.ClipRay(ray, t0, t1)) continue;
+        if (node.count > 0) {
+            for (int i = node.first; i < node.first + node.count; ++i) {
+                int patch = bvhOrder_[i];
+                std::optional<double> t =
+                    PatchFirstRoot(patches_[patch], trees_[patch], ray, tMin, best);
+                if (t) {
+                    best = *t;
+                    hit.part = patch;
+                    found = true;
+                }
+            }
+            continue;
+        }
+        // Visit the child whose box the ray enters first next (pushed last).
+        int a = node.left, b = node.left + 1;
+        double ta0 = tMin, ta1 = best, tb0 = tMin, tb1 = best;
+        bool hitA = bvh_[a].box.ClipRay(ray, ta0, ta1), hitB = bvh_[b].box.ClipRay(ray, tb0, tb1);
+        if (hitA && hitB && tb0 < ta0) std::swap(a, b);
+        if (hitA && hitB) {
+            stack[top++] = b;
+            stack[top++] = a;
+        } else if (hitA || hitB) {
+            stack[top++] = hitA ? a : b;
         }
     }
     if (found) hit.t = best;

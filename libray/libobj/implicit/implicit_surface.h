@@ -69,7 +69,18 @@ class ImplicitSurface final : public Primitive {
     int PatchCount() const { return static_cast<int>(patches_.size()); }
 
   private:
+    // A bounding volume hierarchy over the patch boxes: leaves hold up to kBvhLeafSize
+    // consecutive entries of bvhOrder_, inner nodes their two children at left, left + 1.
+    struct BvhNode {
+        Bounds3 box;
+        int left = -1;   // first child (inner nodes)
+        int first = 0;   // first entry of bvhOrder_ (leaves)
+        int count = 0;   // > 0 for leaves
+    };
+    static constexpr int kBvhLeafSize = 2;
+
     void Build();
+    void BuildBvh(int index, int first, int count);
 
     std::vector<FieldTerm> terms_;
     ImplicitOptions options_;
@@ -79,6 +90,8 @@ class ImplicitSurface final : public Primitive {
     std::vector<LGOctree> trees_;  // one per patch, or the single octree
     Field whole_;                   // the plain sum (normals in single-octree mode)
     Bounds3 bounds_;
+    std::vector<BvhNode> bvh_;  // root at 0 when there are patches
+    std::vector<int> bvhOrder_;
 };
 
 }  // namespace rs

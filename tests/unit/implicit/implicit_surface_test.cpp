@@ -172,6 +172,40 @@ TEST(ImplicitSurface, Kb89MethodMatchesPatches) {
     EXPECT_GT(hits, 100);
 }
 
+// Many patches (found through the BVH over patch boxes) against one octree over the plain
+// sum, on random rays.
+TEST(ImplicitSurface, ManyPatchesMatchTheSingleOctree) {
+    std::vector<FieldTerm> terms;
+    for (int i = 0; i < 150; ++i) {
+        // A deterministic scatter in [-3, 3]³ (golden-ratio sequences).
+        Vec3 c{6 * std::fmod(0.618034 * i, 1.0) - 3, 6 * std::fmod(0.754878 * i, 1.0) - 3,
+               6 * std::fmod(0.569840 * i, 1.0) - 3};
+        terms.push_back({"p", PointSkeleton{c}, Kernel::GascuelQuadratic(0.35, 2.4, 0.9), 1});
+    }
+    ImplicitSurface patches(terms, ImplicitOptions{});
+    ImplicitOptions single;
+    single.singleOctree = true;
+    ImplicitSurface whole(terms, single);
+    EXPECT_EQ(patches.PatchCount(), 150);
+    int hits = 0;
+    for (int i = 0; i < 600; ++i) {
+        double a = 0.37 * i, b = 0.11 * i;
+        Vec3 o{9 * std::cos(a) * std::cos(b), 9 * std::sin(a) * std::cos(b), 9 * std::sin(b)};
+        Vec3 target{3 * std::sin(1.3 * i), 3 * std::cos(2.9 * i), 3 * std::sin(0.53 * i)};
+        Ray ray{o, Normalize(target - o)};
+        PrimitiveHit h1, h2;
+        bool got1 = patches.Intersect(ray, 1e-5, 1e9, h1);
+        bool got2 = whole.Intersect(ray, 1e-5, 1e9, h2);
+        ASSERT_EQ(got1, got2) << i;
+        if (got1) {
+            ++hits;
+            EXPECT_NEAR(h1.t, h2.t, 2e-7) << i;
+            EXPECT_TRUE(patches.Bounds().Contains(ray.At(h1.t)));
+        }
+    }
+    EXPECT_GT(hits, 200);
+}
+
 TEST(ImplicitSurface, AnimatedSkeletonsRebuildPerFrame) {
     auto p = Parse("field quadratic 0.5 2 1.2 point a TIME 0 0 end");
     ASSERT_TRUE(p);
