@@ -103,6 +103,13 @@ class TransformList {
     Transform At(double time) const;
     // The composed transform of a static list (requires !IsAnimated()).
     const Transform& Static() const { return composedStatic_; }
+    // The transform at `time` without copying for static lists: returns Static(), or fills
+    // `storage` with At(time) and returns it.
+    const Transform& AtTime(double time, Transform& storage) const {
+        if (!animated_) return composedStatic_;
+        storage = At(time);
+        return storage;
+    }
 
   private:
     struct Step {

@@ -16,7 +16,7 @@ struct HitRecord {
 
     PrimitiveHit prim;
     const Primitive* primitive = nullptr;
-    const Object* path[kMaxPath] = {};
+    const Object* path[kMaxPath];  // entries [0, pathLength) are valid
     int pathLength = 0;
     // CSG overrides the enter/leave classification of the hit: -1 none, 0 leave, 1 enter.
     int enterOverride = -1;

@@ -1,5 +1,7 @@
 #include "libobj/object.h"
 
+#include <algorithm>
+
 #include "libcommon/constants.h"
 
 namespace rs {
@@ -27,9 +29,10 @@ std::shared_ptr<Object> Object::MakeInstance(std::shared_ptr<Object> of) {
 }
 
 bool Object::Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const {
+    Transform storage;
     const Ray ray = parentFromObject.IsIdentity()
                         ? rayParent
-                        : parentFromObject.At(rayParent.time).InverseRay(rayParent);
+                        : parentFromObject.AtTime(rayParent.time, storage).InverseRay(rayParent);
     bool found = false;
     switch (kind_) {
         case Kind::Primitive: {
@@ -50,8 +53,8 @@ bool Object::Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecor
         case Kind::Aggregate:
         case Kind::Instance: {
             if (bounded_) {
-                // Pre-test the node's box; aggregates with unbounded children only report
-                // the bounded part (spec §3.10 quirk) but then bounded_ covers that too.
+                // Pre-test the node's box (bounded_ is false for aggregates holding
+                // unbounded children, see PrepareFrame).
                 Count(kBoundsTests);
                 double t0 = tMin, t1 = tMax;
                 if (!boundsObject_.ClipRay(ray, t0, t1)) return false;
@@ -87,7 +90,13 @@ void Object::PrepareFrame(double frameTime, double shutter) {
         case Kind::Aggregate:
             for (const auto& child : aggregate_->Children()) child->PrepareFrame(frameTime, shutter);
             aggregate_->PrepareFrame(frameTime, shutter);
-            bounded_ = aggregate_->IsBounded();
+            // The aggregate's box covers only its bounded children. With an unbounded child
+            // the node as a whole is unbounded, so neither its own box pre-test nor its
+            // parent's clips that child away (spec §6 recommends fixing the original's
+            // clipping; top-level planes must never be clipped).
+            bounded_ = aggregate_->IsBounded() &&
+                       std::all_of(aggregate_->Children().begin(), aggregate_->Children().end(),
+                                   [](const auto& child) { return child->IsBounded(); });
             boundsObject_ = aggregate_->Bounds();
             break;
         case Kind::Instance:

@@ -1,0 +1,151 @@
+#include "libobj/grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "libcommon/constants.h"
+#include "libobj/object.h"
+
+namespace rs {
+
+namespace {
+
+// Per-ray record of the children already tested, direct-mapped on the child's index. A
+// collision evicts the older entry, so a child is at worst tested again, never skipped.
+// Lives on the caller's stack: no state shared between rendering threads.
+class Mailbox {
+  public:
+    Mailbox() { std::fill(std::begin(slots_), std::end(slots_), kEmpty); }
+
+    // Records `id` and returns whether it was already recorded.
+    bool CheckAndMark(uint32_t id) {
+        uint32_t& slot = slots_[id % kSlots];
+        if (slot == id) return true;
+        slot = id;
+        return false;
+    }
+
+  private:
+    static constexpr uint32_t kEmpty = std::numeric_limits<uint32_t>::max();
+    static constexpr int kSlots = 64;
+    uint32_t slots_[kSlots];
+};
+
+}  // namespace
+
+GridAggregate::GridAggregate(int nx, int ny, int nz)
+    : n_{std::max(nx, 1), std::max(ny, 1), std::max(nz, 1)} {}
+
+int GridAggregate::VoxelOf(double x, int axis) const {
+    const double f = std::floor((x - gridBox_.lo[axis]) / voxelSize_[axis]);
+    if (!(f > 0)) return 0;  // also NaN
+    return f >= n_[axis] - 1 ? n_[axis] - 1 : static_cast<int>(f);
+}
+
+void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
+    bounded_.clear();
+    unbounded_.clear();
+    cellStart_.clear();
+    cellItems_.clear();
+    bounds_ = Bounds3{};
+    for (const auto& child : children_) {
+        if (child->IsBounded()) {
+            bounded_.push_back(child.get());
+            bounds_.Extend(child->BoundsInParent());
+        } else {
+            unbounded_.push_back(child.get());
+        }
+    }
+    if (bounded_.empty()) return;
+
+    // Padding the grid and every registered box by kEpsilon keeps a hit on a voxel face
+    // registered on both sides despite round-off in the DDA, and gives flat boxes
+    // (polygons) a non-zero extent.
+    gridBox_ = bounds_.Padded(kEpsilon);
+    const Vec3 extent = gridBox_.Extent();
+    voxelSize_ = {extent.x / n_[0], extent.y / n_[1], extent.z / n_[2]};
+
+    // Two passes: count the entries of each cell, then fill them in.
+    const size_t cellCount = static_cast<size_t>(n_[0]) * n_[1] * n_[2];
+    cellStart_.assign(cellCount + 1, 0);
+    auto forEachCell = [&](const Bounds3& box, auto&& visit) {
+        if (box.IsEmpty()) return;
+        const Bounds3 padded = box.Padded(kEpsilon);
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = VoxelOf(padded.lo[a], a);
+            hi[a] = VoxelOf(padded.hi[a], a);
+        }
+        for (int z = lo[2]; z <= hi[2]; ++z)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int x = lo[0]; x <= hi[0]; ++x) visit(CellIndex(x, y, z));
+    };
+    for (const Object* child : bounded_) {
+        forEachCell(child->BoundsInParent(), [&](int c) { ++cellStart_[c + 1]; });
+    }
+    for (size_t c = 0; c < cellCount; ++c) cellStart_[c + 1] += cellStart_[c];
+    cellItems_.resize(cellStart_[cellCount]);
+    std::vector<uint32_t> cursor(cellStart_.begin(), cellStart_.end() - 1);
+    for (uint32_t i = 0; i < bounded_.size(); ++i) {
+        forEachCell(bounded_[i]->BoundsInParent(), [&](int c) { cellItems_[cursor[c]++] = i; });
+    }
+}
+
+bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const {
+    bool found = false;
+    for (const Object* child : unbounded_) {
+        if (child->Intersect(ray, tMin, tMax, hit)) found = true;
+    }
+    if (bounded_.empty()) return found;
+
+    double tEnter = tMin, tExit = tMax;
+    if (!gridBox_.ClipRay(ray, tEnter, tExit)) return found;
+
+    // 3-D DDA (Amanatides & Woo): tNext[a] is the t at which the ray leaves the current
+    // cell through a face normal to axis a, tDelta[a] the t it takes to cross one cell.
+    const Vec3 start = ray.At(tEnter);
+    int cell[3], step[3], stop[3];
+    double tNext[3], tDelta[3];
+    for (int a = 0; a < 3; ++a) {
+        cell[a] = VoxelOf(start[a], a);
+        const double d = ray.dir[a];
+        if (d > 0) {
+            step[a] = 1;
+            stop[a] = n_[a];
+            tNext[a] = (gridBox_.lo[a] + (cell[a] + 1) * voxelSize_[a] - ray.origin[a]) / d;
+            tDelta[a] = voxelSize_[a] / d;
+        } else if (d < 0) {
+            step[a] = -1;
+            stop[a] = -1;
+            tNext[a] = (gridBox_.lo[a] + cell[a] * voxelSize_[a] - ray.origin[a]) / d;
+            tDelta[a] = -voxelSize_[a] / d;
+        } else {
+            step[a] = 0;
+            stop[a] = -1;
+            tNext[a] = std::numeric_limits<double>::infinity();
+            tDelta[a] = 0;
+        }
+    }
+
+    Mailbox tested;
+    for (;;) {
+        const int c = CellIndex(cell[0], cell[1], cell[2]);
+        for (uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
+            const uint32_t id = cellItems_[k];
+            if (tested.CheckAndMark(id)) continue;
+            if (bounded_[id]->Intersect(ray, tMin, tMax, hit)) found = true;
+        }
+        int axis = tNext[0] < tNext[1] ? 0 : 1;
+        if (tNext[2] < tNext[axis]) axis = 2;
+        // Every point of the ray before this cell's exit has been covered: stop once the
+        // nearest hit (or the end of the segment) lies within this cell.
+        if (tMax <= tNext[axis]) break;
+        cell[axis] += step[axis];
+        if (cell[axis] == stop[axis]) break;
+        tNext[axis] += tDelta[axis];
+    }
+    return found;
+}
+
+}  // namespace rs

@@ -1,0 +1,51 @@
+// `grid nx ny nz … end` (spec §3.10): a uniform voxel grid over the bounded children,
+// traversed front to back with a 3-D DDA. Finds exactly the hit a list would.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "libobj/aggregate.h"
+
+namespace rs {
+
+class GridAggregate final : public Aggregate {
+  public:
+    // Voxel counts per axis. Counts below 1 are raised to 1 (the parser warns and discards
+    // such grids before building one).
+    GridAggregate(int nx, int ny, int nz);
+
+    const char* TypeName() const override { return "grid"; }
+
+    // Unbounded children are tested first, then the voxels the segment (tMin, tMax) crosses,
+    // front to back, until the nearest hit so far lies within the current voxel. A child
+    // registered in several voxels is tested once per ray, up to collisions in a small
+    // per-ray table (a repeated test is harmless: tMax only shrinks). Thread-safe.
+    // Requires PrepareFrame to have run.
+    bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const override;
+
+    // The box of the bounded children (object space) and whether there are any.
+    Bounds3 Bounds() const override { return bounds_; }
+    bool IsBounded() const override { return !bounded_.empty(); }
+
+    // Rebuilds the grid from the children's BoundsInParent() for this frame.
+    void PrepareFrame(double frameTime, double shutter) override;
+
+  private:
+    // The voxel index along `axis` holding coordinate x (clamped to the grid).
+    int VoxelOf(double x, int axis) const;
+    int CellIndex(int ix, int iy, int iz) const { return (iz * n_[1] + iy) * n_[0] + ix; }
+
+    int n_[3];
+    Bounds3 bounds_;   // union of the bounded children's boxes
+    Bounds3 gridBox_;  // bounds_ padded by kEpsilon: the voxelised region
+    Vec3 voxelSize_;
+    std::vector<const Object*> bounded_;
+    std::vector<const Object*> unbounded_;
+    // Compressed rows: cell c holds bounded_[cellItems_[k]] for cellStart_[c] <= k <
+    // cellStart_[c + 1].
+    std::vector<uint32_t> cellStart_;
+    std::vector<uint32_t> cellItems_;
+};
+
+}  // namespace rs

@@ -1,0 +1,43 @@
+// `poly p1 … pk` / `polygon` (spec §3.9): a planar polygon with k ≥ 3 vertices in order,
+// any (non-convex, self-intersecting) shape, filled by the non-zero winding rule. Open.
+// Normal by Newell's method, negated by `-f`. uv = (X_x, X_y) with ∂P/∂u = x̂, ∂P/∂v = ŷ.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "libcommon/arg_reader.h"
+#include "libobj/primitive.h"
+
+namespace rs {
+
+class Polygon final : public Primitive {
+  public:
+    // Requires ≥ 3 vertices and a non-zero Newell normal (NewellNormal).
+    Polygon(std::vector<Vec3> vertices, bool flip);
+    // Reads vectors while a number follows. Fewer than 3: args.Fail; a zero Newell normal
+    // (no area): warning, nullptr.
+    static std::shared_ptr<Primitive> Create(ArgReader& args);
+
+    // Σ over the cyclic edges (v_{i−1}, v_i) of (y_{i−1} − y_i)(z_{i−1} + z_i), etc.: twice
+    // the signed vector area; not normalised.
+    static Vec3 NewellNormal(const std::vector<Vec3>& vertices);
+
+    const IntersectionCounters& Counters() const override;
+    Bounds3 Bounds() const override { return bounds_; }
+    bool Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const override;
+    SurfaceNormals Normal(const Vec3& p, const PrimitiveHit& hit) const override;
+    SurfaceUV UV(const Vec3& p, const Vec3& facingNormal, const PrimitiveHit& hit) const override;
+
+  private:
+    std::vector<Vec3> vertices_;
+    Vec3 normal_;
+    double offset_;  // normal·(vertex centroid)
+    // The vertices projected by dropping the normal's dominant axis: coordinates axisU_,
+    // axisV_ of each vertex, used for the winding-number test.
+    int axisU_, axisV_;
+    std::vector<double> projU_, projV_;
+    Bounds3 bounds_;
+};
+
+}  // namespace rs

@@ -1,0 +1,226 @@
+#include "libobj/polynomial.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rs {
+
+namespace {
+
+constexpr double kUnitRoundoff = 1.1102230246251565e-16;  // u = 2⁻⁵³
+// Newton/bisection stops when the step or the bracket falls below 4 ulp of the root.
+constexpr double kRootRelTolerance = 8 * kUnitRoundoff;
+constexpr int kMaxIterations = 100;
+
+// Σ|c_i|·|x|^i: the scale of the terms summed when evaluating at x.
+double EvaluationScale(const double* c, int degree, double x) {
+    double ax = std::fabs(x), s = std::fabs(c[degree]);
+    for (int i = degree - 1; i >= 0; --i) s = s * ax + std::fabs(c[i]);
+    return s;
+}
+
+// Value and derivative by Horner's rule.
+void EvaluateWithDerivative(const double* c, int degree, double x, double& f, double& df) {
+    f = c[degree];
+    df = 0;
+    for (int i = degree - 1; i >= 0; --i) {
+        df = df * x + f;
+        f = f * x + c[i];
+    }
+}
+
+// Real roots of c2·x² + c1·x + c0 (c2 ≠ 0), ascending, distinct. A negative discriminant
+// within rounding error of zero is taken as zero (a tangent double root).
+int QuadraticRoots(double c2, double c1, double c0, double roots[2]) {
+    double disc = c1 * c1 - 4 * c2 * c0;
+    if (disc < 0) {
+        if (-disc > kZeroTolerance * (c1 * c1 + 4 * std::fabs(c2 * c0))) return 0;
+        roots[0] = -c1 / (2 * c2);
+        return 1;
+    }
+    if (disc == 0) {
+        roots[0] = -c1 / (2 * c2);
+        return 1;
+    }
+    // q has the sign of -c1 so no cancellation happens; q ≠ 0 because disc > 0.
+    double q = -0.5 * (c1 + std::copysign(std::sqrt(disc), c1));
+    double r1 = q / c2, r2 = c0 / q;
+    if (r1 > r2) std::swap(r1, r2);
+    roots[0] = r1;
+    if (r2 == r1) return 1;
+    roots[1] = r2;
+    return 2;
+}
+
+// The root of a polynomial monotonic on [left, right] whose values at the ends, fLeft and
+// fRight, have strictly opposite signs: Newton's method kept inside the bracket, bisecting
+// whenever Newton would leave it or is not converging fast enough.
+double RefineRoot(const double* c, int degree, double left, double right, double fLeft,
+                  double fRight) {
+    const bool leftNegative = fLeft < 0;
+    // A false-position first guess is usually close for the nearly linear pieces rays give.
+    double x = left - fLeft * (right - left) / (fRight - fLeft);
+    if (!(x > left && x < right)) x = 0.5 * (left + right);
+    double stepBeforeLast = right - left, lastStep = stepBeforeLast;
+    for (int i = 0; i < kMaxIterations; ++i) {
+        double f, df;
+        EvaluateWithDerivative(c, degree, x, f, df);
+        if (f == 0) return x;
+        if ((f < 0) == leftNegative) {
+            left = x;
+        } else {
+            right = x;
+        }
+        double tolerance = kRootRelTolerance * std::max(std::fabs(left), std::fabs(right));
+        if (right - left <= tolerance) return 0.5 * (left + right);
+
+        double next = df != 0 ? x - f / df : left;  // `left` forces the bisection below
+        bool newtonOk = next > left && next < right &&
+                        std::fabs(next - x) <= 0.5 * std::fabs(stepBeforeLast);
+        if (!newtonOk) next = 0.5 * (left + right);
+        stepBeforeLast = lastStep;
+        lastStep = next - x;
+        if (newtonOk && std::fabs(lastStep) <= kRootRelTolerance * std::fabs(next)) return next;
+        x = next;
+    }
+    return x;
+}
+
+}  // namespace
+
+double EvaluatePolynomial(const double* c, int degree, double x) {
+    double f = c[degree];
+    for (int i = degree - 1; i >= 0; --i) f = f * x + c[i];
+    return f;
+}
+
+AscendingRoots::AscendingRoots(const double* coeffs, int degree, double lo, double hi) {
+    degree = std::min(degree, 4);
+    while (degree > 0 && coeffs[degree] == 0) --degree;
+    // Level k is the k-th derivative; the chain stops at the first of degree ≤ 2.
+    Level& top = levels_[0];
+    top.degree = std::max(degree, 0);
+    for (int i = 0; i <= top.degree; ++i) top.c[i] = coeffs[i];
+    nLevels_ = 1;
+    while (levels_[nLevels_ - 1].degree > 2) {
+        const Level& parent = levels_[nLevels_ - 1];
+        Level& child = levels_[nLevels_++];
+        child.degree = parent.degree - 1;
+        for (int i = 0; i <= child.degree; ++i) child.c[i] = (i + 1) * parent.c[i + 1];
+    }
+    for (int k = 0; k < nLevels_; ++k) Start(levels_[k], lo, hi);
+}
+
+void AscendingRoots::Start(Level& level, double lo, double hi) {
+    level.hi = hi;
+    level.nClosed = level.iClosed = 0;
+    level.done = !(lo <= hi);
+    if (level.done) return;
+    if (level.degree <= 2) {
+        double r[2];
+        int m = 0;
+        if (level.degree == 1) {
+            r[m++] = -level.c[0] / level.c[1];
+        } else if (level.degree == 2) {
+            m = QuadraticRoots(level.c[2], level.c[1], level.c[0], r);
+        }
+        for (int i = 0; i < m; ++i) {
+            if (r[i] >= lo && r[i] <= hi) level.closed[level.nClosed++] = r[i];
+        }
+        return;
+    }
+    level.x0 = lo;
+    level.v0 = ZeroedValue(level, lo);
+    level.pendingZero = level.v0 == 0;
+}
+
+double AscendingRoots::ZeroedValue(const Level& level, double x) {
+    const double f = EvaluatePolynomial(level.c, level.degree, x);
+    return std::fabs(f) <= kZeroTolerance * EvaluationScale(level.c, level.degree, x) ? 0 : f;
+}
+
+bool AscendingRoots::Next(int k, double& root) {
+    if (k >= nLevels_ || k >= kMaxLevels) return false;
+    Level& level = levels_[k];
+    if (level.degree <= 2) {
+        if (level.iClosed >= level.nClosed) return false;
+        root = level.closed[level.iClosed++];
+        return true;
+    }
+    for (;;) {
+        // A break whose value is within rounding error of zero is a root (a multiple one
+        // at an interior critical point) and counts as an exact zero for sign changes.
+        if (level.pendingZero) {
+            level.pendingZero = false;
+            root = level.x0;
+            return true;
+        }
+        if (level.done) return false;
+        // The next break: the derivative's next root beyond x0, or the interval's end. The
+        // polynomial is monotonic between consecutive breaks, so each piece holds at most
+        // one root, present exactly when the end values change sign.
+        double x1 = level.hi, critical;
+        while (Next(k + 1, critical)) {
+            if (critical > level.x0) {
+                x1 = std::min(critical, level.hi);
+                break;
+            }
+        }
+        if (x1 >= level.hi) level.done = true;
+        const double v0 = level.v0, v1 = ZeroedValue(level, x1);
+        const bool signChange = (v0 < 0 && v1 > 0) || (v0 > 0 && v1 < 0);
+        const double x0 = level.x0;
+        level.x0 = x1;
+        level.v0 = v1;
+        level.pendingZero = v1 == 0 && x1 > x0;
+        if (signChange) {
+            root = RefineRoot(level.c, level.degree, x0, x1, v0, v1);
+            return true;
+        }
+    }
+}
+
+int SolvePolynomialInInterval(const double* c, int degree, double lo, double hi,
+                              double* roots) {
+    AscendingRoots walker(c, degree, lo, hi);
+    int n = 0;
+    double x;
+    // A degree-n polynomial has at most n roots; values all within tolerance of zero could
+    // otherwise yield more.
+    while (n < std::max(degree, 0) && walker.Next(x)) {
+        if (n == 0 || x != roots[n - 1]) roots[n++] = x;
+    }
+    return n;
+}
+
+namespace {
+
+// All real roots of Σ c_i x^i: every root lies within Cauchy's bound 1 + max|c_i / c_n|.
+int SolveOnLine(const double* c, int degree, double* roots) {
+    while (degree > 0 && c[degree] == 0) --degree;
+    if (degree <= 0) return 0;
+    double bound = 0;
+    for (int i = 0; i < degree; ++i) bound = std::max(bound, std::fabs(c[i] / c[degree]));
+    bound += 1;
+    if (!std::isfinite(bound)) return 0;
+    return SolvePolynomialInInterval(c, degree, -bound, bound, roots);
+}
+
+}  // namespace
+
+int SolveQuadratic(double a, double b, double c, double roots[2]) {
+    const double coeffs[3] = {c, b, a};
+    return SolveOnLine(coeffs, 2, roots);
+}
+
+int SolveCubic(double a, double b, double c, double d, double roots[3]) {
+    const double coeffs[4] = {d, c, b, a};
+    return SolveOnLine(coeffs, 3, roots);
+}
+
+int SolveQuartic(double a, double b, double c, double d, double e, double roots[4]) {
+    const double coeffs[5] = {e, d, c, b, a};
+    return SolveOnLine(coeffs, 4, roots);
+}
+
+}  // namespace rs

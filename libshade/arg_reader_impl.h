@@ -1,0 +1,61 @@
+// The ArgReader (libcommon/arg_reader.h) over the parser's token stream. The parser reads
+// its own keyword arguments through the same class, so every number, name and file name
+// is read, checked and reported in one way.
+#pragma once
+
+#include <string>
+
+#include "libcommon/arg_reader.h"
+#include "libshade/lexer.h"
+#include "libshade/symtab.h"
+#include "libsurf/surface.h"
+
+namespace rs {
+
+// What the reader needs from the parser besides the tokens.
+class ParserServices {
+  public:
+    virtual ~ParserServices() = default;
+    virtual TokenStream& Tokens() = 0;
+    virtual const SymbolTable& Symbols() const = 0;
+    // Parses a surface expression (spec §2 `surface`) in the current scope.
+    virtual Surface ParseSurfaceValue(const std::string& usage) = 0;
+    virtual bool FlipNormals() const = 0;
+};
+
+class TokenArgReader final : public ArgReader {
+  public:
+    // `keyword` locates the keyword being read (for Warn/Fail); `usage` is appended to
+    // fatal messages.
+    TokenArgReader(ParserServices& parser, SourceLocation keyword, std::string usage)
+        : parser_(parser), keyword_(std::move(keyword)), usage_(std::move(usage)) {}
+
+    double ReadNumber() override;
+    int ReadInt() override;
+    AnimatedValue ReadAnimatedNumber() override;
+    bool PeekNumber() override;
+    bool Accept(const char* word) override;
+    bool Peek(const char* word) override;
+    std::string ReadName() override;
+    std::string ReadFilename() override;
+    bool PeekFilename() override;
+    Surface ReadSurface() override;
+    bool FlipNormals() const override { return parser_.FlipNormals(); }
+    SourceLocation Location() const override { return keyword_; }
+    void Warn(const std::string& message) override;
+    void Advise(const std::string& message) override;
+    [[noreturn]] void Fail(const std::string& message) override;
+
+    // The expression of an animatable argument (spec `aexpr`), static or time-varying.
+    ExprPtr ReadExpression();
+    // Fails at the next token: "Expected <what>, found <token>".
+    [[noreturn]] void FailExpected(const std::string& what);
+    const std::string& usage() const { return usage_; }
+
+  private:
+    ParserServices& parser_;
+    SourceLocation keyword_;
+    std::string usage_;
+};
+
+}  // namespace rs

@@ -1,0 +1,87 @@
+// Numeric expressions of the scene language (spec §1.4, §3.15).
+//
+// An expression is an immutable tree. Builders fold static sub-expressions at once, so a
+// static expression is always a single Constant node. Time-varying nodes are `time`,
+// `frame` and `linear(...)` and every node above one of them; they are evaluated on demand
+// at a given ray time (no caching, so evaluation is thread-safe).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+namespace rs {
+
+class Expr;
+using ExprPtr = std::shared_ptr<const Expr>;
+
+class Expr {
+  public:
+    enum class Op {
+        Constant,
+        Time,
+        Frame,
+        Negate,
+        Add,
+        Subtract,
+        Multiply,
+        Divide,
+        Modulo,
+        Power,
+        Call1,
+        Call2,   // built-in functions of one or two arguments
+        Linear,  // linear(t0, v0, t1, v1)
+    };
+    using Fn1 = double (*)(double);
+    using Fn2 = double (*)(double, double);
+
+    static ExprPtr Number(double value);
+    static ExprPtr Time();
+    static ExprPtr Frame();
+    static ExprPtr Negate(ExprPtr a);
+    // `op` is one of Add … Power.
+    static ExprPtr Binary(Op op, ExprPtr a, ExprPtr b);
+    static ExprPtr Call(Fn1 fn, ExprPtr a);
+    static ExprPtr Call(Fn2 fn, ExprPtr a, ExprPtr b);
+    static ExprPtr Linear(ExprPtr t0, ExprPtr v0, ExprPtr t1, ExprPtr v1);
+
+    Op op() const { return op_; }
+    bool IsTimeVarying() const { return timeVarying_; }
+    // The value of a static expression (requires !IsTimeVarying()).
+    double Value() const { return value_; }
+    // Height of the tree (1 for a leaf); the parser bounds it so evaluation cannot exhaust
+    // the stack.
+    int Depth() const { return depth_; }
+    // Nodes visited by one evaluation (shared sub-trees counted at every use), saturated
+    // at 2^40; bounded by the parser so a chain of `define`s cannot make evaluation
+    // exponentially slow.
+    double Cost() const { return cost_; }
+    // The value at ray time `time` and the frame set by SetCurrentFrame().
+    double Evaluate(double time) const;
+
+  private:
+    Expr(Op op, std::vector<ExprPtr> args);
+    static ExprPtr Fold(std::shared_ptr<Expr> e);
+
+    Op op_;
+    std::vector<ExprPtr> args_;
+    Fn1 fn1_ = nullptr;
+    Fn2 fn2_ = nullptr;
+    double value_ = 0;
+    int depth_ = 1;
+    double cost_ = 1;
+    bool timeVarying_ = false;
+};
+
+// `a % b` with C semantics on the operands truncated to int (spec §1.4): (7 % 3) = 1,
+// (-7 % 3) = -1. A zero divisor or an operand outside the int range gives NaN.
+double ModuloC(double a, double b);
+
+// `linear(t0,v0,t1,v1)` at `time` (spec §1.4): v0 before t0, v1 after t1, v0 when t0≈t1
+// (within kEpsilon), linear in between.
+double LinearAt(double time, double t0, double v0, double t1, double v1);
+
+// The frame number the renderer is working on; the value of `frame` in expressions.
+void SetCurrentFrame(int frame);
+int CurrentFrame();
+
+}  // namespace rs

@@ -1,0 +1,247 @@
+#include "libshade/lexer.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <unordered_map>
+
+namespace rs {
+
+namespace {
+
+// Spec §1.3: every keyword, mapped to its canonical spelling. Synonyms map to the spelling
+// the grammar uses; `samples` (the quick reference's spelling) is accepted for `sample`.
+const std::unordered_map<std::string, std::string>& KeywordTable() {
+    static const std::unordered_map<std::string, std::string> table = [] {
+        std::unordered_map<std::string, std::string> t;
+        const char* words[] = {
+            "ambient",     "aperture",    "applysurf",    "area",      "atmosphere", "background",
+            "blob",        "blotch",      "body",         "box",       "bump",       "checker",
+            "cloud",       "component",   "cone",         "contrast",  "crop",       "cursurf",
+            "cutoff",      "cylinder",    "cylindrical",  "define",    "diffuse",    "difference",
+            "directional", "disc",        "end",          "extended",  "extinct",    "eyep",
+            "eyesep",      "fbm",         "fbmbump",      "filter",    "focaldist",  "fog",
+            "fogdeck",     "fov",         "framelength",  "frames",    "gauss",      "gloss",
+            "grid",        "heightfield", "image",        "index",     "intersect",  "jitter",
+            "light",       "list",        "lookp",        "map",       "marble",     "maxdepth",
+            "mist",        "mount",       "name",         "nojitter",  "noshadow",   "object",
+            "outfile",     "planar",      "plane",        "point",     "poly",       "print",
+            "quiet",       "range",       "reflect",      "report",    "rotate",     "sample",
+            "scale",       "screen",      "shadowtransp", "shutter",   "sky",        "smooth",
+            "specpow",     "specular",    "sphere",       "spherical", "spot",       "starttime",
+            "stripe",      "surface",     "textsurf",     "texture",   "tile",       "torus",
+            "transform",   "translate",   "translu",      "transp",    "triangle",   "triangleuv",
+            "union",       "up",          "uv",           "verbose",   "window",     "windy",
+            "wood"};
+        for (const char* w : words) t.emplace(w, w);
+        t.emplace("polygon", "poly");
+        t.emplace("reflective", "reflect");
+        t.emplace("transparent", "transp");
+        t.emplace("translucency", "translu");
+        t.emplace("resolution", "screen");
+        t.emplace("samples", "sample");
+        return t;
+    }();
+    return table;
+}
+
+bool IsLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+bool IsDigit(char c) { return c >= '0' && c <= '9'; }
+bool IsNameChar(char c) { return IsLetter(c) || IsDigit(c) || c == '.' || c == '_' || c == '-'; }
+bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+char At(const std::string& s, size_t i) { return i < s.size() ? s[i] : '\0'; }
+
+}  // namespace
+
+std::string CanonicalKeyword(const std::string& word) {
+    auto it = KeywordTable().find(word);
+    return it == KeywordTable().end() ? std::string() : it->second;
+}
+
+std::string Token::Describe() const {
+    switch (kind) {
+        case TokenKind::End:
+            return "end of input";
+        case TokenKind::Char: {
+            unsigned char c = static_cast<unsigned char>(text[0]);
+            if (c < 32 || c >= 127) return StringPrintf("character 0x%02x", c);
+            return "'" + text + "'";
+        }
+        default:
+            return "'" + text + "'";
+    }
+}
+
+Lexer::Lexer(std::string text, std::string fileName)
+    : text_(std::move(text)), file_(std::move(fileName)) {}
+
+void Lexer::Fail(const char* format, const std::string& arg) const {
+    Report(Severity::Abort, SourceLocation{file_, line_}, format, arg.c_str());
+    throw FatalError(Severity::Abort, arg);  // not reached: Report throws for Abort
+}
+
+void Lexer::SkipSpaceAndComments() {
+    while (pos_ < text_.size()) {
+        char c = text_[pos_];
+        if (c == '\n') {
+            ++line_;
+            ++pos_;
+            atLineStart_ = true;
+        } else if (IsBlank(c)) {
+            ++pos_;
+        } else if (c == '/' && At(text_, pos_ + 1) == '*') {
+            int startLine = line_;
+            size_t end = text_.find("*/", pos_ + 2);
+            if (end == std::string::npos) {
+                line_ = startLine;
+                Fail("%s", "Unterminated comment");
+            }
+            for (size_t i = pos_; i < end; ++i)
+                if (text_[i] == '\n') ++line_;
+            pos_ = end + 2;
+        } else if (c == '#' && atLineStart_) {
+            ReadLineMarker();
+        } else {
+            return;
+        }
+    }
+}
+
+// `# n "file" flags...`, `# n`, `#line n "file"`: sets the number of the NEXT line to n.
+void Lexer::ReadLineMarker() {
+    size_t eol = text_.find('\n', pos_);
+    if (eol == std::string::npos) eol = text_.size();
+    std::string line = text_.substr(pos_, eol - pos_);
+    size_t i = 1;
+    auto skipBlanks = [&] {
+        while (i < line.size() && IsBlank(line[i])) ++i;
+    };
+    skipBlanks();
+    if (line.compare(i, 4, "line") == 0) {
+        i += 4;
+        skipBlanks();
+    }
+    size_t digitsStart = i;
+    while (i < line.size() && IsDigit(line[i])) ++i;
+    if (i == digitsStart || i - digitsStart > 9) Fail("Unknown '#' control: %s", line);
+    int number = std::atoi(line.substr(digitsStart, i - digitsStart).c_str());
+    skipBlanks();
+    std::string file = file_;
+    if (i < line.size() && line[i] == '"') {
+        size_t close = line.find('"', i + 1);
+        if (close == std::string::npos) Fail("Unknown '#' control: %s", line);
+        file = line.substr(i + 1, close - i - 1);
+        if (file.empty()) file = "stdin";
+        i = close + 1;
+        // gcc appends flags (1 = enter include, 2 = return, 3 = system header, 4 = extern C).
+        while (i < line.size() && (IsBlank(line[i]) || IsDigit(line[i]))) ++i;
+    }
+    if (i != line.size()) Fail("Unknown '#' control: %s", line);
+    pos_ = eol < text_.size() ? eol + 1 : eol;
+    file_ = file;
+    line_ = number;
+    atLineStart_ = true;
+}
+
+// Longest match of the filename pattern (spec §1.2): an optional `/` or `//`, then any
+// number of components (`.`, `..` or a name) each followed by `/`, then a final name.
+// A bare name is the degenerate case. Returns 0 when nothing matches.
+size_t Lexer::MatchFilename(size_t start) const {
+    size_t p = start;
+    if (At(text_, p) == '/') {
+        ++p;
+        if (At(text_, p) == '/') ++p;
+    }
+    size_t best = 0;
+    while (true) {
+        char c = At(text_, p);
+        if (IsLetter(c)) {
+            size_t q = p + 1;
+            while (IsNameChar(At(text_, q))) ++q;
+            best = q - start;
+            if (At(text_, q) != '/') break;
+            p = q + 1;
+        } else if (c == '.') {
+            size_t q = At(text_, p + 1) == '.' ? p + 2 : p + 1;
+            if (At(text_, q) != '/') break;
+            p = q + 1;
+        } else {
+            break;
+        }
+    }
+    return best;
+}
+
+// D+ | D+ . D* [E] | D* . D+ [E] | D+ E with E = [eE][+-]?D+.
+size_t Lexer::MatchNumber(size_t start) const {
+    size_t p = start;
+    size_t intDigits = 0, fracDigits = 0;
+    while (IsDigit(At(text_, p))) ++p, ++intDigits;
+    if (At(text_, p) == '.') {
+        size_t q = p + 1;
+        while (IsDigit(At(text_, q))) ++q, ++fracDigits;
+        if (intDigits == 0 && fracDigits == 0) return 0;
+        p = q;
+    }
+    if (intDigits == 0 && fracDigits == 0) return 0;
+    char e = At(text_, p);
+    if (e == 'e' || e == 'E') {
+        size_t q = p + 1;
+        if (At(text_, q) == '+' || At(text_, q) == '-') ++q;
+        if (IsDigit(At(text_, q))) {
+            while (IsDigit(At(text_, q))) ++q;
+            p = q;
+        }
+    }
+    return p - start;
+}
+
+Token Lexer::Next() {
+    SkipSpaceAndComments();
+    Token tok;
+    tok.location = SourceLocation{file_, line_};
+    if (pos_ >= text_.size()) return tok;
+    atLineStart_ = false;
+
+    char c = text_[pos_];
+    if (size_t n = MatchNumber(pos_); n > 0 && (IsDigit(c) || c == '.')) {
+        tok.kind = TokenKind::Number;
+        tok.text = text_.substr(pos_, n);
+        pos_ += n;
+        tok.number = std::strtod(tok.text.c_str(), nullptr);
+        if (!std::isfinite(tok.number)) Fail("Number out of range: %s", tok.text);
+        return tok;
+    }
+    if (IsLetter(c) || c == '/' || c == '.') {
+        if (size_t n = MatchFilename(pos_); n > 0) {
+            tok.text = text_.substr(pos_, n);
+            pos_ += n;
+            if (tok.text.find('/') != std::string::npos) {
+                tok.kind = TokenKind::Filename;
+            } else if (std::string k = CanonicalKeyword(tok.text); !k.empty()) {
+                tok.kind = TokenKind::Keyword;
+                tok.keyword = std::move(k);
+            } else {
+                tok.kind = TokenKind::Name;
+            }
+            return tok;
+        }
+    }
+    tok.kind = TokenKind::Char;
+    tok.text = std::string(1, c);
+    ++pos_;
+    return tok;
+}
+
+const Token& TokenStream::Peek(size_t k) {
+    while (ahead_.size() <= k) ahead_.push_back(lexer_.Next());
+    return ahead_[k];
+}
+
+Token TokenStream::Next() {
+    if (ahead_.empty()) return lexer_.Next();
+    Token t = std::move(ahead_.front());
+    ahead_.pop_front();
+    return t;
+}
+
+}  // namespace rs

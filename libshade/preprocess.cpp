@@ -1,0 +1,145 @@
+#include "libshade/preprocess.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <sstream>
+
+#include "libcommon/error.h"
+
+extern char** environ;
+
+namespace rs {
+
+namespace {
+
+const SourceLocation kNoLocation{};
+
+// Appends everything readable from `fd` to `out`; returns false at end of file.
+bool Drain(int fd, std::string& out) {
+    char buf[65536];
+    while (true) {
+        ssize_t n = read(fd, buf, sizeof buf);
+        if (n > 0) {
+            out.append(buf, static_cast<size_t>(n));
+            return true;
+        }
+        if (n == 0) return false;
+        if (errno == EINTR) continue;
+        if (errno == EAGAIN) return true;
+        return false;
+    }
+}
+
+std::string ReadRaw(const std::string& path) {
+    int fd = path.empty() ? STDIN_FILENO : open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        Report(Severity::Abort, kNoLocation, "Cannot open %s: %s", path.c_str(), strerror(errno));
+    std::string text;
+    while (Drain(fd, text)) {
+        if (text.size() > kMaxSceneBytes) {
+            if (!path.empty()) close(fd);
+            Report(Severity::Abort, kNoLocation, "Scene input exceeds %zu bytes", kMaxSceneBytes);
+        }
+    }
+    if (!path.empty()) close(fd);
+    return text;
+}
+
+std::vector<std::string> SplitWords(const std::string& s) {
+    std::vector<std::string> words;
+    std::istringstream in(s);
+    std::string w;
+    while (in >> w) words.push_back(w);
+    return words;
+}
+
+// Runs cpp with `args` (argv[0] included), returning its standard output.
+std::string RunCpp(const std::vector<std::string>& args) {
+    int outPipe[2], errPipe[2];
+    if (pipe2(outPipe, O_CLOEXEC) != 0)
+        Report(Severity::Abort, kNoLocation, "Cannot create a pipe: %s", strerror(errno));
+    if (pipe2(errPipe, O_CLOEXEC) != 0) {
+        close(outPipe[0]);
+        close(outPipe[1]);
+        Report(Severity::Abort, kNoLocation, "Cannot create a pipe: %s", strerror(errno));
+    }
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, outPipe[1], STDOUT_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, errPipe[1], STDERR_FILENO);
+
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+
+    pid_t pid = -1;
+    int rc = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    close(outPipe[1]);
+    close(errPipe[1]);
+    if (rc != 0) {
+        close(outPipe[0]);
+        close(errPipe[0]);
+        Report(Severity::Abort, kNoLocation, "Cannot run the C preprocessor '%s': %s", argv[0],
+               strerror(rc));
+    }
+
+    // Read both pipes together so neither can fill up and stall cpp.
+    std::string out, err;
+    bool outOpen = true, errOpen = true, tooBig = false;
+    while ((outOpen || errOpen) && !tooBig) {
+        pollfd fds[2] = {{outOpen ? outPipe[0] : -1, POLLIN, 0},
+                         {errOpen ? errPipe[0] : -1, POLLIN, 0}};
+        if (poll(fds, 2, -1) < 0) {
+            if (errno == EINTR) continue;
+            break;
+        }
+        if (outOpen && (fds[0].revents & (POLLIN | POLLHUP | POLLERR)))
+            outOpen = Drain(outPipe[0], out);
+        if (errOpen && (fds[1].revents & (POLLIN | POLLHUP | POLLERR)))
+            errOpen = Drain(errPipe[0], err);
+        tooBig = out.size() > kMaxSceneBytes || err.size() > kMaxSceneBytes;
+    }
+    close(outPipe[0]);
+    close(errPipe[0]);
+    if (tooBig) kill(pid, SIGTERM);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    while (!err.empty() && err.back() == '\n') err.pop_back();
+    if (tooBig)
+        Report(Severity::Abort, kNoLocation, "Scene input exceeds %zu bytes", kMaxSceneBytes);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        Report(Severity::Abort, kNoLocation, "The C preprocessor failed%s%s",
+               err.empty() ? "" : ":\n", err.c_str());
+    }
+    if (!err.empty()) Report(Severity::Warn, kNoLocation, "cpp: %s", err.c_str());
+    return out;
+}
+
+}  // namespace
+
+SourceText ReadSceneSource(const std::string& path, bool useCpp, const std::string& cppArgs,
+                           const std::vector<std::string>& defines) {
+    SourceText src;
+    src.fileName = path.empty() ? "stdin" : path;
+    if (!useCpp) {
+        src.text = ReadRaw(path);
+        return src;
+    }
+    std::vector<std::string> args{"cpp"};
+    for (std::string& w : SplitWords(cppArgs)) args.push_back(std::move(w));
+    for (const std::string& d : defines) args.push_back("-D" + d);
+    if (!path.empty()) args.push_back(path);
+    src.text = RunCpp(args);
+    return src;
+}
+
+}  // namespace rs

@@ -1,0 +1,30 @@
+// The explicit table of primitive keywords (architecture note §2.4): a new primitive costs
+// one .h/.cpp pair in libray/libobj/, one row in primitive_registry.cpp and one CMake line.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "libcommon/arg_reader.h"
+#include "libobj/primitive.h"
+
+namespace rs {
+
+struct PrimitiveEntry {
+    const char* keyword;  // canonical keyword (synonyms are folded by the lexer)
+    // Reads the arguments after the keyword (and the optional surface, which the parser
+    // handles). Returns nullptr for degenerate input after warning through the reader.
+    std::shared_ptr<Primitive> (*create)(ArgReader&);
+    const char* usage;  // the argument syntax, for error messages
+};
+
+const std::vector<PrimitiveEntry>& PrimitiveRegistry();
+
+// The row for `keyword`, or null.
+const PrimitiveEntry* FindPrimitive(const std::string& keyword);
+
+// Whether `keyword` names a primitive of the language (spec §2 `primitive`), implemented or
+// not: blob and heightfield are keywords before their rows exist.
+bool IsPrimitiveKeyword(const std::string& keyword);
+
+}  // namespace rs

@@ -1,0 +1,30 @@
+// The command line of spec §4. Options given here set the matching `...Set` flags so the
+// scene keyword is ignored afterwards (spec §3.1).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "libshade/scene.h"
+
+namespace rs {
+
+struct CommandLine {
+    RenderOptions options;
+    std::string inputFile;  // empty: standard input
+    bool useCpp = true;
+    std::string cppArgs;    // -P's single argument
+    bool alpha = false;     // -a: write RGBA PNG
+    double eyeSep = -1;     // -E (applies when options.eyeSepSet)
+    bool help = false;      // -h
+    bool resume = false;    // -c
+};
+
+// Parses argv. Returns false with `error` set on a usage error (unknown option, missing
+// or malformed argument, two input files); the caller prints usage and exits 1.
+bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& out, std::string& error);
+
+// The usage text printed by -h and on usage errors.
+const char* UsageText();
+
+}  // namespace rs

@@ -1,0 +1,190 @@
+// rayshade: renders a Rayshade 4.0 scene file to PNG (or the original's mtv format).
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "libcommon/error.h"
+#include "libcommon/stats.h"
+#include "libimage/image.h"
+#include "liblight/directional_light.h"
+#include "libshade/expression.h"
+#include "libshade/parser.h"
+#include "rayshade/cli.h"
+#include "rayshade/renderer.h"
+#include "rayshade/report.h"
+
+namespace {
+
+using rs::Severity;
+
+bool gQuiet = false;
+std::FILE* gStats = stderr;
+
+void PrintDiagnostic(const rs::Diagnostic& d) {
+    if (d.severity == Severity::Advise && gQuiet) return;
+    const char* kind = d.severity == Severity::Advise || d.severity == Severity::Warn
+                           ? "Warning"
+                           : (d.severity == Severity::Abort ? "Error" : "Fatal error");
+    if (d.location.IsKnown())
+        std::fprintf(stderr, "rayshade: %s: %s:%d: %s\n", kind,
+                     d.location.file.empty() ? "<stdin>" : d.location.file.c_str(), d.location.line,
+                     d.message.c_str());
+    else
+        std::fprintf(stderr, "rayshade: %s: %s\n", kind, d.message.c_str());
+}
+
+// Progress on stderr: a live bar on a terminal, a plain line every 10% otherwise.
+class Progress {
+  public:
+    Progress(bool quiet, int frame) : quiet_(quiet), tty_(isatty(STDERR_FILENO)), frame_(frame) {}
+    void operator()(long done, long total) {
+        if (quiet_ || total <= 0) return;
+        int percent = static_cast<int>(100 * done / total);
+        if (tty_) {
+            if (percent == last_) return;
+            last_ = percent;
+            int bar = percent / 4;
+            std::fprintf(stderr, "\rframe %d [%.*s%*s] %3d%%", frame_, bar,
+                         "#########################", 25 - bar, "", percent);
+            if (done >= total) std::fputc('\n', stderr);
+            std::fflush(stderr);
+        } else if (percent / 10 != last_ / 10 || (done >= total && last_ != 100)) {
+            last_ = percent;
+            std::fprintf(stderr, "frame %d: %d%% done\n", frame_, percent);
+        }
+    }
+
+  private:
+    bool quiet_, tty_;
+    int frame_;
+    int last_ = -1;
+};
+
+double CpuSeconds(bool user) {
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    const timeval& tv = user ? ru.ru_utime : ru.ru_stime;
+    return static_cast<double>(tv.tv_sec) + static_cast<double>(tv.tv_usec) * 1e-6;
+}
+
+// Name of frame `frame`'s image when several frames go to files: "<stem>_fNNN<ext>"
+// (at least three digits), e.g. coin_f007.png.
+std::string FrameFileName(const std::string& name, int frame) {
+    std::string::size_type dot = name.find_last_of('.');
+    std::string::size_type slash = name.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) dot = name.size();
+    char digits[32];
+    std::snprintf(digits, sizeof digits, "_f%03d", frame);
+    return name.substr(0, dot) + digits + name.substr(dot);
+}
+
+// Resource limits (documented in README.md): images up to 2^28 pixels and 65,536 on a side;
+// up to 16×16 samples per pixel.
+constexpr long kMaxPixels = 1L << 28;
+constexpr int kMaxSide = 65536;
+constexpr int kMaxSamplesPerSide = 16;
+
+void ValidateOptions(const rs::RenderOptions& o) {
+    if (o.xres < 1 || o.yres < 1 || o.xres > kMaxSide || o.yres > kMaxSide ||
+        static_cast<long>(o.xres) * o.yres > kMaxPixels)
+        rs::Report(Severity::Abort, {}, "resolution %dx%d is outside 1..%d per side and %ld pixels",
+                   o.xres, o.yres, kMaxSide, kMaxPixels);
+    if (o.samples < 1 || o.samples > kMaxSamplesPerSide)
+        rs::Report(Severity::Abort, {}, "sample count %d is outside 1..%d", o.samples, kMaxSamplesPerSide);
+    if (o.frames < 1) rs::Report(Severity::Abort, {}, "the number of frames must be at least 1");
+}
+
+int Run(int argc, char** argv) {
+    rs::CommandLine cl;
+    std::string error;
+    if (!rs::ParseCommandLine(std::vector<std::string>(argv + 1, argv + argc), cl, error)) {
+        std::fprintf(stderr, "rayshade: %s\n%s", error.c_str(), rs::UsageText());
+        return 1;
+    }
+    if (cl.help) {
+        std::fputs(rs::UsageText(), stderr);
+        return 0;
+    }
+    gQuiet = cl.options.quiet;
+    if (cl.resume)
+        rs::Report(Severity::Abort, {}, "-c (continue an interrupted render) is not supported yet");
+    if (cl.options.statsFileSet) {
+        gStats = std::fopen(cl.options.statsFile.c_str(), "w");
+        if (!gStats) {
+            gStats = stderr;
+            rs::Report(Severity::Abort, {}, "cannot open statistics file '%s': %s",
+                       cl.options.statsFile.c_str(), std::strerror(errno));
+        }
+    }
+    if (cl.options.verbose) std::fprintf(gStats, "rayshade 4.0 (C++ re-creation), patch level 6\nReading input file...\n");
+
+    auto start = std::chrono::steady_clock::now();
+    rs::ParseInput input;
+    input.path = cl.inputFile;
+    input.useCpp = cl.useCpp;
+    input.cppArgs = cl.cppArgs;
+    rs::Scene scene = rs::ParseScene(input, cl.options);
+    rs::RenderOptions& o = scene.options;
+    gQuiet = o.quiet;
+    if (o.eyeSepSet) scene.camera.eyeSep = cl.eyeSep;
+    ValidateOptions(o);
+    if (o.maxDepth < 0) o.maxDepth = 0;
+    bool anyLight = false;
+    for (const auto& l : scene.lights) anyLight = anyLight || l != nullptr;
+    if (!anyLight)
+        scene.lights.push_back(std::make_shared<rs::DirectionalLight>(rs::Color(1), rs::Vec3{1, -1, 1}));
+
+    const bool toStdout = o.outFile.empty();
+    if (toStdout && isatty(STDOUT_FILENO))
+        rs::Report(Severity::Abort, {}, "no output file: give one with -O file.png (or redirect standard output for mtv)");
+
+    rs::RunTimes times;
+    for (int f = o.startFrame; f < o.startFrame + o.frames; ++f) {
+        double frameTime = o.startTime + f * o.frameLength;
+        rs::SetCurrentFrame(f);
+        scene.world->PrepareFrame(frameTime, o.shutter);
+        if (f == o.startFrame) {
+            times.preprocessSeconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (!o.quiet) std::fprintf(gStats, "Preprocessing time:\t%.2f sec\nStarting trace.\n", times.preprocessSeconds);
+        }
+        auto renderStart = std::chrono::steady_clock::now();
+        Progress progress(o.quiet, f);
+        rs::Renderer renderer(scene, [&](long done, long total) { progress(done, total); });
+        rs::Image image = renderer.RenderFrame(f, frameTime, cl.alpha && !toStdout);
+        times.renderWallSeconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - renderStart).count();
+        if (toStdout) {
+            std::vector<uint8_t> bytes = rs::EncodeMtv(image);
+            if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0)
+                rs::Report(Severity::Abort, {}, "cannot write the image to standard output");
+        } else {
+            std::string name = o.frames > 1 ? FrameFileName(o.outFile, f) : o.outFile;
+            if (!rs::WriteImage(name, image, error)) rs::Report(Severity::Abort, {}, "%s", error.c_str());
+        }
+    }
+    times.cpuUserSeconds = CpuSeconds(true);
+    times.cpuSystemSeconds = CpuSeconds(false);
+    if (o.verbose) rs::WriteStatistics(gStats, times);
+    if (gStats != stderr) std::fclose(gStats);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    rs::SetErrorSink(PrintDiagnostic);
+    try {
+        return Run(argc, argv);
+    } catch (const rs::FatalError& e) {
+        return e.ExitStatus();
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "rayshade: Fatal error: out of memory\n");
+        return 2;
+    }
+}

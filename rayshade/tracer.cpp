@@ -1,0 +1,299 @@
+#include "rayshade/tracer.h"
+
+#include <cmath>
+#include <optional>
+
+#include "libcommon/constants.h"
+#include "libcommon/stats.h"
+#include "libobj/object.h"
+#include "libtext/texture.h"
+
+namespace rs {
+
+namespace {
+
+const CounterId kEyeRays = RegisterCounter("eye rays");
+const CounterId kShadowRays = RegisterCounter("shadow rays");
+const CounterId kReflectedRays = RegisterCounter("reflected rays");
+const CounterId kRefractedRays = RegisterCounter("refracted rays");
+const CounterId kHitRays = RegisterCounter("hit rays");
+const CounterId kShadowHits = RegisterCounter("shadow hits");
+
+bool AnyAbove(const Color& c, const Color& threshold) {
+    return c.r > threshold.r || c.g > threshold.g || c.b > threshold.b;
+}
+
+// Fraction left after `dist` through a medium whose colour halves every `halfDist`
+// (spec §3.8 att()).
+double Attenuation(double dist, double halfDist) {
+    if (halfDist < kEpsilon) return 0;
+    double q = std::log(0.5) * dist / halfDist;
+    return q < -10 ? 0 : std::exp(q);
+}
+
+// Heckbert's refraction: false on total internal reflection.
+bool Refract(const Vec3& d, Vec3 n, double mu, Vec3& out) {
+    double c1 = -Dot(d, n);
+    if (c1 < 0) {
+        n = -n;
+        c1 = -c1;
+    }
+    double c2sq = 1 - mu * mu * (1 - c1 * c1);
+    if (c2sq < 0) return false;
+    out = Normalize(d * mu + n * (mu * c1 - std::sqrt(c2sq)));
+    return true;
+}
+
+}  // namespace
+
+Tracer::Tracer(const Scene& scene) : scene_(scene), options_(scene.options) {}
+
+Color Tracer::TraceEye(const Ray& ray, SampleState& sample, bool& hit) const {
+    Count(kEyeRays);
+    MediumStack media;
+    double dist = 0;
+    return Trace(ray, 0, Color(1), media, sample, dist, hit);
+}
+
+Color Tracer::Trace(const Ray& ray, int depth, const Color& weight, MediumStack& media,
+                    SampleState& sample, double& hitDist, bool& hit) const {
+    HitRecord record;
+    double tMax = kFar;
+    Color c;
+    hit = scene_.world->Intersect(ray, kEpsilon, tMax, record);
+    if (hit) {
+        Count(kHitRays);
+        hitDist = record.t();
+        c = Shade(ray, record, depth, weight, media, sample);
+    } else {
+        hitDist = kFar;
+        c = options_.background;
+    }
+    if (media.size == 0 && !scene_.atmosphere.empty()) c = Atmosphere(ray, hitDist, c);
+    return c;
+}
+
+const Surface& Tracer::UntexturedSurface(const HitRecord& hit) const {
+    for (int i = 0; i < hit.pathLength; ++i)
+        if (hit.path[i]->surface) return *hit.path[i]->surface;
+    return defaultSurface_;
+}
+
+Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool textured,
+                                      SampleState& sample) const {
+    // Transforms along the path at the ray's time; path[0] is the primitive's node. Static
+    // lists are referenced, animated ones evaluated into `animated`.
+    const Transform* nodeTransforms[HitRecord::kMaxPath];
+    std::optional<Transform> animated[HitRecord::kMaxPath];
+    Transform worldFromPrimitive;
+    for (int i = 0; i < hit.pathLength; ++i) {
+        const TransformList& list = hit.path[i]->parentFromObject;
+        nodeTransforms[i] = list.IsIdentity()    ? nullptr
+                            : list.IsAnimated() ? &animated[i].emplace(list.At(ray.time))
+                                                : &list.Static();
+        if (nodeTransforms[i]) worldFromPrimitive = worldFromPrimitive.Then(*nodeTransforms[i]);
+    }
+    const Ray rayPrimitive = worldFromPrimitive.InverseRay(ray);
+    const Vec3 pPrimitive = rayPrimitive.At(hit.t());
+    const SurfaceNormals normals = hit.primitive->Normal(pPrimitive, hit.prim);
+
+    ShadingPoint sp;
+    sp.surface = UntexturedSurface(hit);
+    sp.smooth = normals.smooth;
+
+    Vec3 p = pPrimitive, n = normals.shading, ng = normals.geometric;
+    if (textured) {
+        TextureContext ctx;
+        ctx.primitive = hit.primitive;
+        ctx.primitiveHit = hit.prim;
+        ctx.pointPrimitive = pPrimitive;
+        ctx.facingNormalPrimitive =
+            Dot(rayPrimitive.dir, normals.geometric) > 0 ? -normals.geometric : normals.geometric;
+        ctx.rayPrimitive = rayPrimitive;
+        ctx.time = ray.time;
+        ctx.sampleNumber = sample.sampleNumber;
+        ctx.samplesPerSide = sample.samplesPerSide;
+        ctx.rng = sample.rng;
+        for (int i = 0; i < hit.pathLength; ++i) {
+            if (nodeTransforms[i]) {
+                const Transform& t = *nodeTransforms[i];
+                p = t.ApplyPoint(p);
+                n = Normalize(t.ApplyNormal(n));
+                ng = Normalize(t.ApplyNormal(ng));
+                ctx.nodeFromPrimitive = ctx.nodeFromPrimitive.Then(t);
+            }
+            if (hit.path[i]->textures.empty()) continue;
+            ctx.point = p;
+            ctx.normal = n;
+            ctx.geometricNormal = ng;
+            for (const auto& texture : hit.path[i]->textures) texture->Apply(ctx, sp.surface);
+            n = ctx.normal;
+        }
+        sp.point = ray.At(hit.t());
+    } else {
+        n = Normalize(worldFromPrimitive.ApplyNormal(n));
+        ng = Normalize(worldFromPrimitive.ApplyNormal(ng));
+        sp.point = ray.At(hit.t());
+    }
+
+    // Face the ray (double-sided shading). For interpolated normals the geometric normal
+    // decides when the two disagree.
+    double dn = Dot(ray.dir, n), dg = Dot(ray.dir, ng);
+    bool flip = (sp.smooth && ((dn > 0) != (dg > 0))) ? dg > 0 : dn > 0;
+    sp.entering = hit.enterOverride >= 0 ? hit.enterOverride == 1 : !flip;
+    sp.normal = flip ? -n : n;
+    sp.geometric = flip ? -ng : ng;
+    return sp;
+}
+
+Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
+                    MediumStack& media, SampleState& sample) const {
+    const ShadingPoint sp = Evaluate(ray, hit, true, sample);
+    const Surface& s = sp.surface;
+    const Vec3& n = sp.normal;
+
+    Color c = s.ambient * scene_.ambientLight;
+    const Vec3 mirror = ray.dir + n * (2 * -Dot(ray.dir, n));
+
+    // Lights are evaluated in reverse order of definition, as the original stores them.
+    for (auto it = scene_.lights.rbegin(); it != scene_.lights.rend(); ++it) {
+        const Light& light = **it;
+        LightSample ls;
+        if (!light.Sample(sp.point, sample.sampleNumber, sample.samplesPerSide, *sample.rng, ls))
+            continue;
+        double cosTheta = Dot(ls.shadeDir, n);
+        if (sp.smooth && cosTheta <= 0 && Dot(ls.shadeDir, sp.geometric) > 0)
+            cosTheta = Dot(ls.shadeDir, sp.geometric);
+        bool noShadow = s.noshadow || light.noshadow || options_.noShadows;
+        if (cosTheta > 0) {
+            Color li = noShadow ? ls.color
+                                : LightThroughShadows(sp.point, ray.time, ls.color, ls.shadowDir,
+                                                      ls.shadowDist, sample);
+            if (li == Color{}) continue;
+            c += s.diffuse * li * cosTheta;
+            double cosAlpha = Dot(mirror, ls.shadeDir);
+            if (s.specpow >= kEpsilon && cosAlpha > 0)
+                c += s.specular * li * std::pow(cosAlpha, s.specpow);
+        } else if (s.translucency >= kEpsilon) {
+            // Light from behind the surface. The original scales the whole colour
+            // accumulated so far by τ (spec §3.6); we scale only this light's share, the
+            // intended behaviour (no shipped scene uses translucency).
+            Color li = noShadow ? ls.color
+                                : LightThroughShadows(sp.point, ray.time, ls.color, ls.shadowDir,
+                                                      ls.shadowDist, sample);
+            if (li == Color{}) continue;
+            Color share = s.translucentColor * li * (-cosTheta);
+            double cosAlpha = -Dot(mirror, ls.shadeDir);
+            if (s.translucentPow >= kEpsilon && cosAlpha > 0)
+                share += s.body * li * std::pow(cosAlpha, s.translucentPow);
+            c += share * s.translucency;
+        }
+    }
+
+    if (depth >= options_.maxDepth) return c;
+
+    Color reflectWeight = s.specular * s.reflect;
+    if (s.transp > kEpsilon) {
+        Color transmitWeight = s.body * s.transp;
+        if (AnyAbove(transmitWeight * weight, options_.cutoff)) {
+            // Indices on each side: entering pushes the surface's medium, leaving pops it.
+            MediumStack inner = media;
+            double fromIndex, toIndex, extinct;
+            if (sp.entering) {
+                fromIndex = media.size ? media.media[media.size - 1].index : scene_.atmosphereIndex;
+                toIndex = s.index;
+                if (inner.size < kMaxMedia) inner.media[inner.size++] = {s.index, s.extinct};
+                extinct = s.extinct;
+            } else {
+                if (inner.size > 0) --inner.size;
+                fromIndex = s.index;
+                toIndex = inner.size ? inner.media[inner.size - 1].index : scene_.atmosphereIndex;
+                extinct = inner.size ? inner.media[inner.size - 1].extinct : 1.0;
+            }
+            Vec3 dir;
+            if (Refract(ray.dir, n, fromIndex / toIndex, dir)) {
+                Count(kRefractedRays);
+                double dist = 0;
+                bool hitAny = false;
+                Color t = Trace({sp.point, dir, ray.time}, depth + 1, weight * transmitWeight,
+                                inner, sample, dist, hitAny);
+                double fade = extinct == 1.0 ? 1.0 : std::pow(extinct, dist);
+                c += transmitWeight * t * fade;
+            } else {
+                reflectWeight += transmitWeight;  // total internal reflection
+            }
+        }
+    }
+    if (reflectWeight.AnyAbove(kEpsilon) && AnyAbove(reflectWeight * weight, options_.cutoff)) {
+        Count(kReflectedRays);
+        double dist = 0;
+        bool hitAny = false;
+        c += reflectWeight * Trace({sp.point, mirror, ray.time}, depth + 1, weight * reflectWeight,
+                                   media, sample, dist, hitAny);
+    }
+    return c;
+}
+
+Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light,
+                                  const Vec3& dir, double dist, SampleState& sample) const {
+    Count(kShadowRays);
+    const Ray ray{p, dir, time};
+    Color c = light;
+    double tMin = kShadowEpsilon;
+    bool previousEntering = false;
+    double previousT = 0, previousExtinct = 1;
+    // Each pass moves past one transparent occluder; a bound keeps pathological stacks of
+    // coincident transparent surfaces from looping for long.
+    constexpr int kMaxOccluders = 1024;
+    for (int pass = 0; pass < kMaxOccluders; ++pass) {
+        HitRecord hit;
+        double tMax = dist;
+        if (!scene_.world->Intersect(ray, tMin, tMax, hit)) return c;
+        if (!options_.shadowTransparency || UntexturedSurface(hit).transp < kEpsilon) {
+            Count(kShadowHits);
+            return {};
+        }
+        if (previousEntering)
+            c *= std::pow(previousExtinct, hit.t() - previousT - kEpsilon);
+        ShadingPoint sp = Evaluate(ray, hit, true, sample);
+        c *= sp.surface.body * sp.surface.transp;
+        if (!c.AnyAbove(kEpsilon)) {
+            Count(kShadowHits);
+            return {};
+        }
+        previousEntering = sp.entering;
+        previousT = hit.t();
+        previousExtinct = sp.surface.extinct;
+        tMin = hit.t() + kShadowEpsilon;
+    }
+    Count(kShadowHits);
+    return {};
+}
+
+Color Tracer::Atmosphere(const Ray& ray, double dist, const Color& in) const {
+    Color c = in;
+    // Effects apply in reverse order of listing.
+    for (auto it = scene_.atmosphere.rbegin(); it != scene_.atmosphere.rend(); ++it) {
+        const AtmosphereEffect& e = *it;
+        double effectiveDist = dist;
+        if (e.kind == AtmosphereEffect::Kind::Mist) {
+            // Mean density along the ray of exp(zero − h/scale) between both end heights.
+            double oz = ray.origin.z, pz = ray.At(dist).z;
+            double delta = (pz - oz) / e.scale;
+            double rho = std::fabs(delta) > kEpsilon
+                             ? (std::exp(e.zero - oz / e.scale) - std::exp(e.zero - pz / e.scale)) / delta
+                             : std::exp(e.zero - pz / e.scale);
+            effectiveDist = dist * rho;
+        } else if (e.kind == AtmosphereEffect::Kind::FogDeck) {
+            continue;  // fogdeck is inert in the original (spec §3.8); part 2 implements it
+        }
+        double ar = Attenuation(effectiveDist, e.thinness.r);
+        double ag = Attenuation(effectiveDist, e.thinness.g);
+        double ab = Attenuation(effectiveDist, e.thinness.b);
+        c = {ar * c.r + (1 - ar) * e.color.r, ag * c.g + (1 - ag) * e.color.g,
+             ab * c.b + (1 - ab) * e.color.b};
+    }
+    return c;
+}
+
+}  // namespace rs

@@ -1,0 +1,66 @@
+// The shading model of spec §3.6–3.8: surfaces and textures at the winning hit, lights with
+// (transparent) shadows, reflection, refraction through a stack of media, and atmosphere.
+#pragma once
+
+#include "libcommon/random.h"
+#include "libobj/hit.h"
+#include "libshade/scene.h"
+#include "libsurf/surface.h"
+
+namespace rs {
+
+// Per-sample state shared by an eye ray and all rays it spawns.
+struct SampleState {
+    int sampleNumber = -1;  // dithered sample number (§3.3), −1 when none
+    int samplesPerSide = 1;
+    Rng* rng = nullptr;
+};
+
+class Tracer {
+  public:
+    explicit Tracer(const Scene& scene);
+
+    // Colour seen along an eye ray (unit direction); `hit` tells whether it hit anything
+    // (the sample's alpha).
+    Color TraceEye(const Ray& ray, SampleState& sample, bool& hit) const;
+
+    // Everything shading needs at a hit, in world space.
+    struct ShadingPoint {
+        Vec3 point;
+        Vec3 normal;     // shading normal, unit, facing the ray
+        Vec3 geometric;  // geometric normal, unit, facing the ray
+        bool smooth = false;
+        bool entering = false;
+        Surface surface;
+    };
+    // Evaluates the hit's surface (with textures when `textured`) and normals.
+    ShadingPoint Evaluate(const Ray& ray, const HitRecord& hit, bool textured,
+                          SampleState& sample) const;
+
+  private:
+    struct Medium {
+        double index;
+        double extinct;
+    };
+    static constexpr int kMaxMedia = 64;
+    struct MediumStack {
+        Medium media[kMaxMedia];
+        int size = 0;
+    };
+
+    Color Trace(const Ray& ray, int depth, const Color& weight, MediumStack& media,
+                SampleState& sample, double& hitDist, bool& hit) const;
+    Color Shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
+                MediumStack& media, SampleState& sample) const;
+    // Light arriving at `p` from a light sample after occluders (black when blocked).
+    Color LightThroughShadows(const Vec3& p, double time, const Color& light,
+                              const Vec3& dir, double dist, SampleState& sample) const;
+    Color Atmosphere(const Ray& ray, double dist, const Color& c) const;
+    const Surface& UntexturedSurface(const HitRecord& hit) const;
+
+    const Scene& scene_;
+    const RenderOptions& options_;
+    Surface defaultSurface_ = Surface::Default();
+};
+
+}  // namespace rs

@@ -1,0 +1,232 @@
+#include "libobj/grid.h"
+
+#include <gtest/gtest.h>
+
+#include "libcommon/constants.h"
+#include "libcommon/random.h"
+#include "libcommon/stats.h"
+#include "libobj/list.h"
+#include "libobj/object.h"
+#include "test_shapes.h"
+
+namespace rs {
+namespace {
+
+using testing::Probe;
+using testing::TestBox;
+using testing::TestPlane;
+using testing::TestSphere;
+
+std::shared_ptr<Object> Wrap(std::shared_ptr<Aggregate> agg,
+                             const std::vector<std::shared_ptr<Object>>& children) {
+    for (const auto& c : children) agg->AddChild(c);
+    auto node = Object::MakeAggregate(std::move(agg));
+    node->PrepareFrame(0, 0);
+    return node;
+}
+
+double Uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * rng.Uniform(); }
+
+Vec3 RandomPoint(Rng& rng, double lo, double hi) {
+    return {Uniform(rng, lo, hi), Uniform(rng, lo, hi), Uniform(rng, lo, hi)};
+}
+
+Vec3 RandomDirection(Rng& rng) {
+    for (;;) {
+        Vec3 d = RandomPoint(rng, -1, 1);
+        double len2 = LengthSquared(d);
+        if (len2 > 1e-4 && len2 <= 1) return d / std::sqrt(len2);
+    }
+}
+
+// A random scene: spheres of many sizes (some spanning most of the grid), boxes, some of
+// them instanced through random scales and translations, and optionally a plane.
+std::vector<std::shared_ptr<Object>> RandomScene(Rng& rng, bool withPlane) {
+    std::vector<std::shared_ptr<Object>> children;
+    const int count = 10 + static_cast<int>(rng.Uniform() * 80);
+    for (int i = 0; i < count; ++i) {
+        const double r = rng.Uniform() < 0.1 ? Uniform(rng, 1, 4) : Uniform(rng, 0.05, 0.6);
+        const Vec3 c = RandomPoint(rng, -5, 5);
+        std::shared_ptr<Object> child;
+        if (i % 7 == 3) {
+            const Vec3 h = RandomPoint(rng, 0.05, 1);
+            child = Object::MakePrimitive(std::make_shared<TestBox>(c - h, c + h));
+        } else {
+            child = Object::MakePrimitive(std::make_shared<TestSphere>(c, r));
+        }
+        if (i % 5 == 2) {
+            auto instance = Object::MakeInstance(child);
+            instance->parentFromObject.Append(*Transform::Scale(RandomPoint(rng, 0.3, 2)));
+            instance->parentFromObject.Append(Transform::Translate(RandomPoint(rng, -2, 2)));
+            child = instance;
+        }
+        children.push_back(child);
+    }
+    if (withPlane) children.push_back(Object::MakePrimitive(std::make_shared<TestPlane>()));
+    return children;
+}
+
+// Snaps some direction components to zero so axis-parallel rays are covered.
+Vec3 MaybeAxisParallel(Rng& rng, Vec3 d) {
+    for (int a = 0; a < 3; ++a) {
+        if (rng.Uniform() < 0.1) d[a] = 0;
+    }
+    return LengthSquared(d) > 0 ? d : Vec3{0, 0, 1};
+}
+
+TEST(GridAggregate, FindsTheSameHitsAsAListOnRandomScenes) {
+    for (uint64_t seed = 1; seed <= 40; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        Rng rng(seed);
+        const auto children = RandomScene(rng, seed % 4 == 0);
+        const int nx = 1 + static_cast<int>(rng.Uniform() * 12);
+        const int ny = 1 + static_cast<int>(rng.Uniform() * 12);
+        const int nz = 1 + static_cast<int>(rng.Uniform() * 12);
+        auto list = Wrap(std::make_shared<ListAggregate>(), children);
+        auto grid = Wrap(std::make_shared<GridAggregate>(nx, ny, nz), children);
+        EXPECT_EQ(grid->IsBounded(), list->IsBounded());
+        EXPECT_EQ(grid->aggregate()->Bounds().lo, list->aggregate()->Bounds().lo);
+        EXPECT_EQ(grid->aggregate()->Bounds().hi, list->aggregate()->Bounds().hi);
+        int hits = 0;
+        for (int i = 0; i < 3000; ++i) {
+            // Origins inside and outside the grid; directions not always unit length, half
+            // of them aimed near a child's centre so that most of those rays hit.
+            const Vec3 origin = RandomPoint(rng, -9, 9);
+            Vec3 dir = RandomDirection(rng);
+            if (i % 2 == 0) {
+                const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
+                if (target->IsBounded()) {
+                    dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -0.2, 0.2) -
+                                    origin);
+                }
+            }
+            const Ray ray{origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+            const double tMin = rng.Uniform() < 0.2 ? Uniform(rng, 0, 5) : kEpsilon;
+            const double tMaxStart = rng.Uniform() < 0.2 ? Uniform(rng, 1, 10) : kFar;
+            double tList = tMaxStart, tGrid = tMaxStart;
+            HitRecord hList, hGrid;
+            const bool fList = list->Intersect(ray, tMin, tList, hList);
+            const bool fGrid = grid->Intersect(ray, tMin, tGrid, hGrid);
+            ASSERT_EQ(fList, fGrid) << "ray " << i;
+            if (!fList) continue;
+            ++hits;
+            ASSERT_EQ(tList, tGrid) << "ray " << i;
+            ASSERT_EQ(hList.primitive, hGrid.primitive) << "ray " << i;
+            ASSERT_EQ(hList.pathLength, hGrid.pathLength) << "ray " << i;
+            for (int k = 0; k + 1 < hList.pathLength; ++k) ASSERT_EQ(hList.path[k], hGrid.path[k]);
+        }
+        EXPECT_GT(hits, 300);
+    }
+}
+
+TEST(GridAggregate, TestsAChildSpanningManyVoxelsOncePerRay) {
+    // The grid is [-5, 5]³ in 8×8×8 voxels of 1.25: the big sphere (radius 4) is registered
+    // in every voxel; small spheres sit in two opposite corners.
+    auto big = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 0, 0}, 4, "BigSphere"));
+    auto grid = Wrap(std::make_shared<GridAggregate>(8, 8, 8),
+                     {big, Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{-4, -4, -4}, 1)),
+                      Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{4, 4, 4}, 1))});
+    ResetStats();
+    HitRecord hit;
+    double tMax = kFar;
+    // Along x at y = 3.5, z = −3.5: crosses all 8 voxels of its row, 4.95 > 4 from the
+    // big sphere's centre and more than 1 from both small ones, so nothing is hit.
+    EXPECT_FALSE(grid->Intersect({{-6, 3.5, -3.5}, {1, 0, 0}}, kEpsilon, tMax, hit));
+    EXPECT_EQ(CounterTotal("BigSphere tests"), 1u);
+}
+
+TEST(GridAggregate, StopsOnceTheHitLiesInTheCurrentVoxel) {
+    // Spheres of radius 0.3 on the integer lattice {0..9}³: the grid box is [−0.3, 9.3]³
+    // in 10³ voxels of 0.96, so each sphere occupies exactly one voxel. A ray along the x
+    // axis hits the sphere at the origin at x = −0.3 inside the first voxel: one test.
+    std::vector<std::shared_ptr<Object>> spheres;
+    for (int x = 0; x < 10; ++x)
+        for (int y = 0; y < 10; ++y)
+            for (int z = 0; z < 10; ++z)
+                spheres.push_back(Object::MakePrimitive(
+                    std::make_shared<TestSphere>(Vec3(x, y, z), 0.3, "LatticeSphere")));
+    auto grid = Wrap(std::make_shared<GridAggregate>(10, 10, 10), spheres);
+    ResetStats();
+    HitRecord hit;
+    double tMax = kFar;
+    ASSERT_TRUE(grid->Intersect({{-5, 0, 0}, {1, 0, 0}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 4.7);
+    EXPECT_EQ(CounterTotal("LatticeSphere tests"), 1u);
+    // At y = z = 0.5 the ray misses every sphere (0.5·√2 > 0.3) and crosses the ten voxels
+    // (i, 0, 0), which hold one sphere each: ten tests.
+    ResetStats();
+    tMax = kFar;
+    EXPECT_FALSE(grid->Intersect({{-5, 0.5, 0.5}, {1, 0, 0}}, kEpsilon, tMax, hit));
+    EXPECT_EQ(CounterTotal("LatticeSphere tests"), 10u);
+}
+
+TEST(GridAggregate, UnboundedChildrenAreTestedSeparately) {
+    auto plane = Object::MakePrimitive(std::make_shared<TestPlane>());
+    auto sphere = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 0, 5}, 1));
+    auto grid = Wrap(std::make_shared<GridAggregate>(4, 4, 4), {sphere, plane});
+    EXPECT_TRUE(grid->aggregate()->IsBounded());
+    EXPECT_FALSE(grid->IsBounded());
+    HitRecord hit;
+    double tMax = kFar;
+    ASSERT_TRUE(grid->Intersect({{50, 50, 2}, {0, 0, -1}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 2);
+    EXPECT_EQ(hit.primitive, plane->primitive());
+    tMax = kFar;
+    ASSERT_TRUE(grid->Intersect({{0, 0, 10}, {0, 0, -1}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 4);
+    EXPECT_EQ(hit.primitive, sphere->primitive());
+}
+
+TEST(GridAggregate, OnlyUnboundedChildren) {
+    auto grid = Wrap(std::make_shared<GridAggregate>(3, 3, 3),
+                     {Object::MakePrimitive(std::make_shared<TestPlane>())});
+    EXPECT_FALSE(grid->aggregate()->IsBounded());
+    HitRecord hit;
+    double tMax = kFar;
+    ASSERT_TRUE(grid->Intersect({{0, 0, 1}, {0, 0, -2}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 0.5);
+}
+
+TEST(GridAggregate, FlatChildrenAndFlatGrids) {
+    // Two zero-thickness boxes in the plane z = 0 make a flat grid.
+    auto a = Object::MakePrimitive(std::make_shared<TestBox>(Vec3{0, 0, 0}, Vec3{1, 1, 0}));
+    auto b = Object::MakePrimitive(std::make_shared<TestBox>(Vec3{2, 0, 0}, Vec3{3, 1, 0}));
+    auto grid = Wrap(std::make_shared<GridAggregate>(5, 5, 5), {a, b});
+    HitRecord hit;
+    double tMax = kFar;
+    ASSERT_TRUE(grid->Intersect({{2.5, 0.5, 3}, {0, 0, -1}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 3);
+    EXPECT_EQ(hit.primitive, b->primitive());
+    // Grazing along the plane z = 0 from x = −1: box a's face x = 0 at t = 1.
+    tMax = kFar;
+    ASSERT_TRUE(grid->Intersect({{-1, 0.5, 0}, {1, 0, 0}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 1);
+}
+
+TEST(GridAggregate, SizesBelowOneAreRaisedToOne) {
+    auto s = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 0, 0}, 1));
+    auto grid = Wrap(std::make_shared<GridAggregate>(0, -3, 1), {s});
+    HitRecord hit;
+    double tMax = kFar;
+    ASSERT_TRUE(grid->Intersect({{0, 0, -3}, {0, 0, 1}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 2);
+}
+
+TEST(GridAggregate, RebuildsForEachFrame) {
+    // An animated instance: translated by (time, 0, 0).
+    auto s = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 0, 0}, 1));
+    auto moving = Object::MakeInstance(s);
+    moving->parentFromObject.AppendAnimated(
+        [](double time) -> std::optional<Transform> { return Transform::Translate({time, 0, 0}); });
+    auto anchor = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 10, 0}, 1));
+    auto grid = Wrap(std::make_shared<GridAggregate>(4, 4, 4), {moving, anchor});
+    grid->PrepareFrame(5, 0);
+    HitRecord hit;
+    double tMax = kFar;
+    // At time 5 the sphere is centred on x = 5; a ray down the z axis through x = 5.
+    ASSERT_TRUE(grid->Intersect({{5, 0, 10}, {0, 0, -1}, 5}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 9);
+}
+
+}  // namespace
+}  // namespace rs

@@ -1,0 +1,156 @@
+#include "libobj/list.h"
+
+#include <gtest/gtest.h>
+
+#include "libcommon/constants.h"
+#include "libobj/object.h"
+#include "test_shapes.h"
+
+namespace rs {
+namespace {
+
+using testing::Probe;
+using testing::TestPlane;
+using testing::TestSphere;
+
+std::shared_ptr<Object> Sphere(const Vec3& c, double r) {
+    return Object::MakePrimitive(std::make_shared<TestSphere>(c, r));
+}
+
+std::shared_ptr<Object> MakeList(std::vector<std::shared_ptr<Object>> children) {
+    auto list = std::make_shared<ListAggregate>();
+    for (auto& c : children) list->AddChild(std::move(c));
+    auto node = Object::MakeAggregate(list);
+    node->PrepareFrame(0, 0);
+    return node;
+}
+
+TEST(ListAggregate, KeepsNearestHitWhateverTheOrder) {
+    auto s5 = Sphere({5, 0, 0}, 1), s10 = Sphere({10, 0, 0}, 1), s15 = Sphere({15, 0, 0}, 1);
+    auto list = MakeList({s15, s5, s10});
+    HitRecord hit;
+    double tMax = kFar;
+    ASSERT_TRUE(list->Intersect({{0, 0, 0}, {1, 0, 0}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(tMax, 4);  // sphere at x = 5 of radius 1
+    EXPECT_DOUBLE_EQ(hit.t(), 4);
+    EXPECT_EQ(hit.primitive, s5->primitive());
+    ASSERT_EQ(hit.pathLength, 2);
+    EXPECT_EQ(hit.path[0], s5.get());
+    EXPECT_EQ(hit.path[1], list.get());
+}
+
+TEST(ListAggregate, MissLeavesTMaxAndHitUntouched) {
+    auto list = MakeList({Sphere({5, 0, 0}, 1)});
+    HitRecord hit;
+    hit.pathLength = 7;
+    double tMax = 3.5;  // the sphere's first hit is at t = 4
+    EXPECT_FALSE(list->Intersect({{0, 0, 0}, {1, 0, 0}}, kEpsilon, tMax, hit));
+    EXPECT_EQ(tMax, 3.5);
+    EXPECT_EQ(hit.pathLength, 7);
+}
+
+TEST(ListAggregate, RespectsOpenInterval) {
+    auto list = MakeList({Sphere({5, 0, 0}, 1)});
+    HitRecord hit;
+    double tMax = kFar;
+    // tMin = 4 exactly excludes the entry hit: the exit at t = 6 is next.
+    ASSERT_TRUE(list->Intersect({{0, 0, 0}, {1, 0, 0}}, 4, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 6);
+    tMax = 6;
+    EXPECT_FALSE(list->Intersect({{0, 0, 0}, {1, 0, 0}}, 4, tMax, hit));
+}
+
+TEST(ListAggregate, TestsUnboundedChildrenFirst) {
+    std::vector<int> log;
+    auto list = MakeList({Object::MakePrimitive(std::make_shared<Probe>(1, &log, true)),
+                          Object::MakePrimitive(std::make_shared<Probe>(2, &log, false)),
+                          Object::MakePrimitive(std::make_shared<Probe>(3, &log, true))});
+    HitRecord hit;
+    double tMax = kFar;
+    EXPECT_FALSE(list->aggregate()->Intersect({{-5, 0, 0}, {1, 0, 0}}, 0, tMax, hit));
+    EXPECT_EQ(log, (std::vector<int>{2, 1, 3}));
+}
+
+TEST(ListAggregate, SkipsBoundedChildrenWhenTheRayMissesTheirBox) {
+    std::vector<int> log;
+    auto list = MakeList({Object::MakePrimitive(std::make_shared<Probe>(1, &log, true)),
+                          Object::MakePrimitive(std::make_shared<Probe>(2, &log, false))});
+    HitRecord hit;
+    double tMax = kFar;
+    // The bounded probe's box is [-1, 1]³; this ray passes at y = 5.
+    list->aggregate()->Intersect({{-5, 5, 0}, {1, 0, 0}}, 0, tMax, hit);
+    EXPECT_EQ(log, (std::vector<int>{2}));
+    // A segment ending before the box is skipped too.
+    log.clear();
+    tMax = 3;  // the box starts at t = 4
+    list->aggregate()->Intersect({{-5, 0, 0}, {1, 0, 0}}, 0, tMax, hit);
+    EXPECT_EQ(log, (std::vector<int>{2}));
+}
+
+TEST(ListAggregate, UnboundedHitShrinksTheSegmentBeforeTheBoxTest) {
+    // Plane z = 0 hit at t = 1; the sphere box (around z = -3) starts at t = 2.
+    auto sphere = Sphere({0, 0, -3}, 1);
+    auto plane = Object::MakePrimitive(std::make_shared<TestPlane>());
+    auto list = MakeList({sphere, plane});
+    HitRecord hit;
+    double tMax = kFar;
+    ASSERT_TRUE(list->Intersect({{0, 0, 1}, {0, 0, -1}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 1);
+    EXPECT_EQ(hit.primitive, plane->primitive());
+}
+
+TEST(ListAggregate, BoundsDescribeTheBoundedChildren) {
+    auto list = MakeList({Sphere({0, 0, 0}, 1), Sphere({4, 0, 0}, 2),
+                          Object::MakePrimitive(std::make_shared<TestPlane>())});
+    const Aggregate& agg = *list->aggregate();
+    EXPECT_TRUE(agg.IsBounded());
+    EXPECT_EQ(agg.Bounds().lo, (Vec3{-1, -2, -2}));
+    EXPECT_EQ(agg.Bounds().hi, (Vec3{6, 2, 2}));
+    // The node holding an unbounded child is unbounded as a whole.
+    EXPECT_FALSE(list->IsBounded());
+
+    auto planesOnly = MakeList({Object::MakePrimitive(std::make_shared<TestPlane>())});
+    EXPECT_FALSE(planesOnly->aggregate()->IsBounded());
+    EXPECT_FALSE(planesOnly->IsBounded());
+
+    auto spheresOnly = MakeList({Sphere({0, 0, 0}, 1)});
+    EXPECT_TRUE(spheresOnly->IsBounded());
+    EXPECT_EQ(spheresOnly->BoundsInParent().hi, (Vec3{1, 1, 1}));
+}
+
+TEST(ListAggregate, NestedUnboundedChildIsNotClippedToTheSiblingsBox) {
+    // World = list{ inner list{ plane, small sphere }, sphere far away }: a ray hitting the
+    // plane far from both spheres must see it (spec §6: the original's clipping is a bug).
+    auto inner = MakeList({Object::MakePrimitive(std::make_shared<TestPlane>()),
+                           Sphere({0, 0, 5}, 1)});
+    auto world = MakeList({inner, Sphere({0, 0, 10}, 1)});
+    HitRecord hit;
+    double tMax = kFar;
+    ASSERT_TRUE(world->Intersect({{100, 100, 3}, {0, 0, -1}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 3);
+    ASSERT_EQ(hit.pathLength, 3);
+    EXPECT_EQ(hit.path[1], inner.get());
+    EXPECT_EQ(hit.path[2], world.get());
+}
+
+TEST(ListAggregate, InstancesMapRaysIntoTheirSpace) {
+    // A unit sphere at the origin, instanced scaled by 2 then moved to x = 10.
+    auto shared = Sphere({0, 0, 0}, 1);
+    auto instance = Object::MakeInstance(shared);
+    instance->parentFromObject.Append(*Transform::Scale({2, 2, 2}));
+    instance->parentFromObject.Append(Transform::Translate({10, 0, 0}));
+    auto world = MakeList({shared, instance});
+    HitRecord hit;
+    double tMax = kFar;
+    // From x = 20 toward −x: the instance spans x ∈ [8, 12], so the first hit is t = 8.
+    ASSERT_TRUE(world->Intersect({{20, 0, 0}, {-1, 0, 0}}, kEpsilon, tMax, hit));
+    EXPECT_DOUBLE_EQ(hit.t(), 8);
+    ASSERT_EQ(hit.pathLength, 3);
+    EXPECT_EQ(hit.path[0], shared.get());
+    EXPECT_EQ(hit.path[1], instance.get());
+    EXPECT_EQ(world->BoundsInParent().lo, (Vec3{-1, -2, -2}));
+    EXPECT_EQ(world->BoundsInParent().hi, (Vec3{12, 2, 2}));
+}
+
+}  // namespace
+}  // namespace rs

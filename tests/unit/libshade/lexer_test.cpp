@@ -1,0 +1,154 @@
+#include "libshade/lexer.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace rs {
+namespace {
+
+std::vector<Token> LexAll(const std::string& text, const std::string& file = "t.ray") {
+    Lexer lexer(text, file);
+    std::vector<Token> out;
+    while (true) {
+        Token t = lexer.Next();
+        if (t.kind == TokenKind::End) break;
+        out.push_back(t);
+    }
+    return out;
+}
+
+// Runs the lexer to the end and returns the fatal error's message ("" when none).
+std::string LexError(const std::string& text) {
+    try {
+        LexAll(text);
+    } catch (const FatalError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Lexer, NamesMayContainDashDotAndUnderscore) {
+    auto t = LexAll("a-b x.y my_surf2 planet.map sphere1");
+    ASSERT_EQ(t.size(), 5u);
+    for (const Token& tok : t) EXPECT_EQ(tok.kind, TokenKind::Name) << tok.text;
+    EXPECT_EQ(t[0].text, "a-b");
+    EXPECT_EQ(t[3].text, "planet.map");
+    EXPECT_EQ(t[4].text, "sphere1");
+}
+
+TEST(Lexer, KeywordsAndSynonymsAreCanonical) {
+    auto t = LexAll("sphere polygon reflective transparent translucency resolution samples sample");
+    ASSERT_EQ(t.size(), 8u);
+    const char* expected[] = {"sphere",  "poly",   "reflect", "transp",
+                              "translu", "screen", "sample",  "sample"};
+    for (size_t i = 0; i < t.size(); ++i) {
+        EXPECT_EQ(t[i].kind, TokenKind::Keyword);
+        EXPECT_EQ(t[i].keyword, expected[i]);
+    }
+    EXPECT_EQ(t[1].text, "polygon");
+}
+
+TEST(Lexer, Numbers) {
+    auto t = LexAll("42 42. .5 1e-3 2.5E4 7e");
+    ASSERT_EQ(t.size(), 7u);
+    EXPECT_DOUBLE_EQ(t[0].number, 42);
+    EXPECT_DOUBLE_EQ(t[1].number, 42);
+    EXPECT_DOUBLE_EQ(t[2].number, 0.5);
+    EXPECT_DOUBLE_EQ(t[3].number, 0.001);
+    EXPECT_DOUBLE_EQ(t[4].number, 25000);
+    // "7e" is the number 7 followed by the name "e" (an exponent needs digits).
+    EXPECT_EQ(t[5].kind, TokenKind::Number);
+    EXPECT_DOUBLE_EQ(t[5].number, 7);
+    EXPECT_EQ(t[6].kind, TokenKind::Name);
+}
+
+TEST(Lexer, SignsAreSeparateTokens) {
+    auto t = LexAll("-1 +2");
+    ASSERT_EQ(t.size(), 4u);
+    EXPECT_TRUE(t[0].IsChar('-'));
+    EXPECT_EQ(t[1].kind, TokenKind::Number);
+    EXPECT_TRUE(t[2].IsChar('+'));
+}
+
+TEST(Lexer, NumberOutOfRangeIsAnError) {
+    EXPECT_NE(LexError("sphere 1e999 0 0 0").find("t.ray:1: Number out of range"),
+              std::string::npos);
+}
+
+TEST(Lexer, Filenames) {
+    auto t = LexAll("/usr/img/a.rle ../maps/x.map ./y //net/z a/b");
+    ASSERT_EQ(t.size(), 5u);
+    for (const Token& tok : t) EXPECT_EQ(tok.kind, TokenKind::Filename) << tok.text;
+    EXPECT_EQ(t[0].text, "/usr/img/a.rle");
+    EXPECT_EQ(t[1].text, "../maps/x.map");
+    EXPECT_EQ(t[3].text, "//net/z");
+}
+
+TEST(Lexer, SlashBeforeADigitIsDivision) {
+    // Spec §1.2: (a/2) works because 2 cannot start a name; (a / b) needs the spaces.
+    auto t = LexAll("(a/2) (a / b)");
+    ASSERT_EQ(t.size(), 10u);
+    EXPECT_EQ(t[1].text, "a");
+    EXPECT_TRUE(t[2].IsChar('/'));
+    EXPECT_EQ(t[3].kind, TokenKind::Number);
+    EXPECT_TRUE(t[7].IsChar('/'));
+}
+
+TEST(Lexer, CommentsAndCarriageReturns) {
+    auto t = LexAll("a /* x\n y */ b\r\nc");
+    ASSERT_EQ(t.size(), 3u);
+    EXPECT_EQ(t[1].location.line, 2);
+    EXPECT_EQ(t[2].text, "c");
+    EXPECT_EQ(t[2].location.line, 3);
+}
+
+TEST(Lexer, UnterminatedCommentIsAnError) {
+    EXPECT_EQ(LexError("a\n/* never closed\n\n"), "t.ray:2: Unterminated comment");
+}
+
+TEST(Lexer, LineMarkersSetFileAndLine) {
+    auto t = LexAll(
+        "# 1 \"<stdin>\"\n# 10 \"scene.ray\" 1 3\na\nb\n#line 40 \"inc.ray\"\nc\n# 7\nd\n"
+        "# 3 \"\"\ne");
+    ASSERT_EQ(t.size(), 5u);
+    EXPECT_EQ(t[0].location.file, "scene.ray");
+    EXPECT_EQ(t[0].location.line, 10);
+    EXPECT_EQ(t[1].location.line, 11);
+    EXPECT_EQ(t[2].location.file, "inc.ray");
+    EXPECT_EQ(t[2].location.line, 40);
+    EXPECT_EQ(t[3].location.file, "inc.ray");
+    EXPECT_EQ(t[3].location.line, 7);
+    EXPECT_EQ(t[4].location.file, "stdin");
+    EXPECT_EQ(t[4].location.line, 3);
+}
+
+TEST(Lexer, UnknownHashControlIsAnError) {
+    EXPECT_EQ(LexError("a\n#include \"x.ray\"\n"),
+              "t.ray:2: Unknown '#' control: #include \"x.ray\"");
+}
+
+TEST(Lexer, HashInsideALineIsACharacter) {
+    auto t = LexAll("a # b");
+    ASSERT_EQ(t.size(), 3u);
+    EXPECT_TRUE(t[1].IsChar('#'));
+}
+
+TEST(Lexer, OtherCharacters) {
+    auto t = LexAll("( ) , * % ^ @");
+    ASSERT_EQ(t.size(), 7u);
+    for (const Token& tok : t) EXPECT_EQ(tok.kind, TokenKind::Char);
+}
+
+TEST(TokenStream, PeekDoesNotConsume) {
+    TokenStream s("a b c", "t");
+    EXPECT_EQ(s.Peek(1).text, "b");
+    EXPECT_EQ(s.Peek(0).text, "a");
+    EXPECT_EQ(s.Next().text, "a");
+    EXPECT_EQ(s.Next().text, "b");
+    EXPECT_EQ(s.Peek(5).kind, TokenKind::End);
+    EXPECT_EQ(s.Next().text, "c");
+}
+
+}  // namespace
+}  // namespace rs

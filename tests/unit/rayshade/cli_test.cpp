@@ -1,0 +1,63 @@
+#include "rayshade/cli.h"
+
+#include <gtest/gtest.h>
+
+namespace rs {
+namespace {
+
+bool Parse(std::vector<std::string> args, CommandLine& cl, std::string& error) {
+    return ParseCommandLine(args, cl, error);
+}
+
+TEST(CommandLine, ResolutionAndOutputSetTheirFlags) {
+    CommandLine cl;
+    std::string error;
+    ASSERT_TRUE(Parse({"-R", "256", "128", "scene.ray", "-O", "out.png"}, cl, error)) << error;
+    EXPECT_EQ(cl.options.xres, 256);
+    EXPECT_EQ(cl.options.yres, 128);
+    EXPECT_TRUE(cl.options.resolutionSet);
+    EXPECT_EQ(cl.options.outFile, "out.png");
+    EXPECT_TRUE(cl.options.outFileSet);
+    EXPECT_EQ(cl.inputFile, "scene.ray");
+}
+
+TEST(CommandLine, PreviewForcesOneSampleNoShadowsDepthZero) {
+    CommandLine cl;
+    std::string error;
+    ASSERT_TRUE(Parse({"-p"}, cl, error));
+    EXPECT_EQ(cl.options.samples, 1);
+    EXPECT_EQ(cl.options.maxDepth, 0);
+    EXPECT_TRUE(cl.options.noShadows);
+    EXPECT_TRUE(cl.options.jitter);
+}
+
+TEST(CommandLine, TogglesFlipTwice) {
+    CommandLine cl;
+    std::string error;
+    ASSERT_TRUE(Parse({"-o", "-o", "-n"}, cl, error));
+    EXPECT_TRUE(cl.options.shadowTransparency);
+    EXPECT_TRUE(cl.options.noShadows);
+}
+
+TEST(CommandLine, SamplesClampToOne) {
+    CommandLine cl;
+    std::string error;
+    ASSERT_TRUE(Parse({"-S", "0"}, cl, error));
+    EXPECT_EQ(cl.options.samples, 1);
+}
+
+TEST(CommandLine, ErrorsAreReportedNotCrashed) {
+    CommandLine cl;
+    std::string error;
+    EXPECT_FALSE(Parse({"-R", "12"}, cl, error));
+    EXPECT_NE(error.find("-R"), std::string::npos);
+    cl = CommandLine{};
+    EXPECT_FALSE(Parse({"-R", "12", "x"}, cl, error));
+    EXPECT_FALSE(Parse({"-Z"}, cl, error));
+    EXPECT_FALSE(Parse({"a.ray", "b.ray"}, cl, error));
+    EXPECT_FALSE(Parse({"-V", "-v"}, cl, error));
+    EXPECT_FALSE(Parse({"-t", "0"}, cl, error));
+}
+
+}  // namespace
+}  // namespace rs
