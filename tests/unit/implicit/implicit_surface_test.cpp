@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "libobj/blob.h"
 #include "libsurf/surface.h"
 
 namespace rs {
@@ -204,6 +205,38 @@ TEST(ImplicitSurface, ManyPatchesMatchTheSingleOctree) {
         }
     }
     EXPECT_GT(hits, 200);
+}
+
+// The blob kernel is Rayshade's metaball: point skeletons with `field blob s r` and the
+// same threshold trace the same surface as the `blob` primitive (closed-form quartics).
+TEST(ImplicitSurface, BlobKernelMatchesTheBlobPrimitive) {
+    std::vector<Blob::Ball> balls{{1.0, 1.0, {0, 0, 0}}, {0.8, 0.7, {0.6, 0.2, 0}},
+                                  {1.5, 1.2, {-0.4, 0.5, 0.3}}, {0.6, 0.5, {0.2, -0.6, -0.3}}};
+    Blob blob(0.5, balls);
+    std::string text = "threshold 0.5 ";
+    for (size_t i = 0; i < balls.size(); ++i) {
+        const Blob::Ball& b = balls[i];
+        text += StringPrintf("point b%zu %g %g %g field blob %g %g ", i, b.centre.x, b.centre.y,
+                             b.centre.z, b.strength, b.radius);
+    }
+    auto implicit = Parse(text + "end");
+    ASSERT_TRUE(implicit);
+    int hits = 0;
+    for (int i = 0; i < 500; ++i) {
+        double a = 0.41 * i, b = 0.13 * i;
+        Vec3 o{5 * std::cos(a) * std::cos(b), 5 * std::sin(a) * std::cos(b), 5 * std::sin(b)};
+        Vec3 target{0.8 * std::sin(1.7 * i), 0.8 * std::cos(2.3 * i), 0.6 * std::sin(0.9 * i)};
+        Ray ray{o, Normalize(target - o)};
+        PrimitiveHit h1, h2;
+        bool got1 = implicit->Intersect(ray, 1e-5, 1e9, h1);
+        bool got2 = blob.Intersect(ray, 1e-5, 1e9, h2);
+        ASSERT_EQ(got1, got2) << i;
+        if (got1) {
+            ++hits;
+            EXPECT_NEAR(h1.t, h2.t, 1e-6) << i;
+        }
+    }
+    EXPECT_GT(hits, 150);
 }
 
 TEST(ImplicitSurface, AnimatedSkeletonsRebuildPerFrame) {
