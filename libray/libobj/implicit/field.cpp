@@ -1,0 +1,95 @@
+#include "libobj/implicit/field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "libcommon/stats.h"
+
+namespace rs {
+
+namespace {
+
+struct FieldCounters {
+    CounterId values = RegisterCounter("Implicit field evaluations");
+    CounterId gradients = RegisterCounter("Implicit gradient evaluations");
+    CounterId bounds = RegisterCounter("Implicit bound evaluations");
+};
+
+const FieldCounters& Counters() {
+    static const FieldCounters counters;
+    return counters;
+}
+
+}  // namespace
+
+Bounds3 TermSupportBounds(const FieldTerm& term) {
+    return SkeletonBounds(term.skeleton).Padded(term.kernel.Radius());
+}
+
+double Field::TermValue(int i, const Vec3& p) const {
+    const FieldTerm& t = terms_[i];
+    return t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
+}
+
+double Field::Value(const Vec3& p) const {
+    Count(Counters().values);
+    double sum = 0;
+    for (const FieldTerm& t : terms_) {
+        sum += t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
+    }
+    return sum;
+}
+
+Vec3 Field::Gradient(const Vec3& p) const {
+    Count(Counters().gradients);
+    Vec3 g;
+    for (const FieldTerm& t : terms_) {
+        Vec3 closest;
+        double d = SkeletonDistance(t.skeleton, p, closest);
+        if (d <= 0 || d >= t.kernel.Radius()) continue;
+        g += (p - closest) * (t.weight * t.kernel.Derivative(d) / d);
+    }
+    return g;
+}
+
+FieldBound Field::Bound(const Bounds3& box) const {
+    Count(Counters().bounds);
+    FieldBound fb;
+    fb.minDistance = std::numeric_limits<double>::infinity();
+    for (const FieldTerm& t : terms_) {
+        DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
+        if (r.min >= t.kernel.Radius()) continue;  // f = f' = f'' = 0 on the whole box
+        KernelBounds kb = t.kernel.Bounds(r.min, r.max);
+        double w = std::abs(t.weight);
+        double lo = t.weight * (t.weight >= 0 ? kb.valueMin : kb.valueMax);
+        double hi = t.weight * (t.weight >= 0 ? kb.valueMax : kb.valueMin);
+        fb.valueMin += lo;
+        fb.valueMax += hi;
+        fb.L += w * kb.maxSlope;
+        // max(|f''|, |f'|/r) covers the convex eigenvalues; non-convex kinds add |f'|·X.
+        double curvature = kb.maxCurvature;
+        double extra = ExtraDistanceCurvature(t.skeleton, box);
+        if (extra > 0 && kb.maxSlope > 0) curvature = std::max(curvature, kb.maxSlope * extra);
+        fb.G += w * curvature;
+        fb.minDistance = std::min(fb.minDistance, r.min);
+        ++fb.activeTerms;
+    }
+    return fb;
+}
+
+void Field::TermRange(int i, const Bounds3& box, double& lo, double& hi) const {
+    const FieldTerm& t = terms_[i];
+    DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
+    double near = t.weight * t.kernel.Value(r.min), far = t.weight * t.kernel.Value(r.max);
+    lo = std::min(near, far);
+    hi = std::max(near, far);
+}
+
+Bounds3 Field::SupportBounds() const {
+    Bounds3 b;
+    for (const FieldTerm& t : terms_) b.Extend(TermSupportBounds(t));
+    return b;
+}
+
+}  // namespace rs

@@ -1,0 +1,97 @@
+// Layer 7 of the implicit module: the `implicit` primitive (Gascuel 1995, "Implicit
+// Patches"), the only file of the module that knows libobj. Compiled into ray_obj.
+//
+// Scene syntax, after `implicit [surface]`, until `end` (see README.md in this folder):
+//   threshold T            iso-value (default 1; must be > 0). Inside: F > T.
+//   tolerance Eps          root accuracy in object-space distance (default 1e-7)
+//   octree MaxDepth [Dratio]   octree depth limit (default 6) and Gascuel's Dratio (2)
+//   method patches|kb89    patches (default): one LG octree per implicit patch, improved
+//                          heuristics; kb89: one octree over the whole sum with Kalra &
+//                          Barr's heuristics only (blend statements are then ignored)
+//   field linear|quadratic Thickness Stiffness Radius  |  field blob Strength Radius
+//                          default kernel of the skeletons that follow (initially
+//                          `field quadratic 1 1 2`)
+//   point Name X Y Z                         segment Name X1 Y1 Z1 X2 Y2 Z2
+//   polyline Name N X1 Y1 Z1 ... XN YN ZN    circle Name Radius X Y Z Nx Ny Nz
+//   triangle Name X1 Y1 Z1 X2 Y2 Z2 X3 Y3 Z3 box Name Xlo Ylo Zlo Xhi Yhi Zhi
+//   cylinder Name Radius X1 Y1 Z1 X2 Y2 Z2
+//     each skeleton optionally followed by `weight W` (default 1; negative carves) and/or
+//     its own `field ...`
+//   blend Name Name [Name...]   every pair of the listed skeletons blends. Without any
+//                          blend statement all overlapping skeletons blend (automatic
+//                          neighbour lists); with one or more, only declared pairs do
+//                          (a negative skeleton then carves only those it blends with).
+//   end
+// Skeleton numbers, weights and field parameters may be animated expressions; the object
+// is then rebuilt by PrepareFrame for each frame (Bounds() describes the current frame).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "libcommon/arg_reader.h"
+#include "libobj/implicit/lg_octree.h"
+#include "libobj/primitive.h"
+
+namespace rs {
+
+struct ImplicitOptions {
+    double threshold = 1;
+    OctreeSettings octree;
+    // One octree over the plain sum instead of patches (the "kb89" method).
+    bool singleOctree = false;
+    BlendMode blendMode = BlendMode::Automatic;
+    std::vector<std::pair<int, int>> blendPairs;  // term indices, Explicit mode only
+};
+
+class ImplicitSurface final : public Primitive {
+  public:
+    // Terms must have valid kernels (Kernel::Validate) and threshold > 0.
+    ImplicitSurface(std::vector<FieldTerm> terms, ImplicitOptions options);
+
+    // Reads the block syntax above; fails (located, with usage) on malformed input and
+    // invalid kernels, naming the skeleton.
+    static std::shared_ptr<Primitive> Create(ArgReader& args);
+
+    const IntersectionCounters& Counters() const override;
+    Bounds3 Bounds() const override { return bounds_; }
+    bool IsClosed() const override { return true; }
+    bool Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const override;
+    // Shading and geometric normal: normalised −∇F of the winning patch's field (which
+    // equals the object's field there), falling back to the direction away from the own
+    // skeleton where the gradient vanishes (pinch points), and to +z on the skeleton.
+    SurfaceNormals Normal(const Vec3& p, const PrimitiveHit& hit) const override;
+    void PrepareFrame(double frameTime) override;
+
+    const std::vector<FieldTerm>& Terms() const { return terms_; }
+    int PatchCount() const { return static_cast<int>(patches_.size()); }
+
+  private:
+    // A bounding volume hierarchy over the patch boxes: leaves hold up to kBvhLeafSize
+    // consecutive entries of bvhOrder_, inner nodes their two children at left, left + 1.
+    struct BvhNode {
+        Bounds3 box;
+        int left = -1;   // first child (inner nodes)
+        int first = 0;   // first entry of bvhOrder_ (leaves)
+        int count = 0;   // > 0 for leaves
+    };
+    static constexpr int kBvhLeafSize = 2;
+
+    void Build();
+    void BuildBvh(int index, int first, int count);
+
+    std::vector<FieldTerm> terms_;
+    ImplicitOptions options_;
+    // Rebuilds the terms for a time (set when any parameter is animated).
+    std::function<std::vector<FieldTerm>(double)> termsAt_;
+    std::vector<Patch> patches_;
+    std::vector<LGOctree> trees_;  // one per patch, or the single octree
+    Field whole_;                   // the plain sum (normals in single-octree mode)
+    Bounds3 bounds_;
+    std::vector<BvhNode> bvh_;  // root at 0 when there are patches
+    std::vector<int> bvhOrder_;
+};
+
+}  // namespace rs

@@ -1,0 +1,80 @@
+// Layer 3 of the implicit module: field kernels, functions f(r) of the distance r >= 0 to a
+// skeleton, with compact support [0, R).
+//
+// Gascuel kernels (Gascuel 1995 §1.2, with the outer cubic corrected as in the research
+// note §2.1), parameters thickness e, stiffness k, influence radius R, 0 < e < R, k > 0:
+//   linear inner    (r <= e): 1 − k(r − e)                      f' = −k,      f'' = 0
+//   quadratic inner (r <= e): 1 − ½(r − e)(kr/e + k)
+//                           = 1 + ke/2 − k r²/(2e)              f' = −kr/e,   f'' = −k/e
+//   outer (e < r < R), Hermite form with ℓ = R − e, s = (r − e)/ℓ, m = kℓ:
+//       g = (2s³ − 3s² + 1) − m(s³ − 2s² + s)
+//       g' = [6s² − 6s − m(3s² − 4s + 1)]/ℓ,   g'' = [12s − 6 − m(6s − 4)]/ℓ²
+//     so g(e) = 1, g'(e) = −k, g(R) = g'(R) = 0 (C¹ everywhere, f'' jumps at e and R).
+//     Equivalent to (r − R)²(ar + b) with a = −(k(e − R) + 2)/(e − R)³,
+//     b = (ke² − keR + 3e − R)/(e − R)³ (the printed paper coefficients are wrong).
+//   f = 0 for r >= R.
+// Validity: g >= 0 and g decreasing on [e, R] exactly when m = k(R − e) <= 3 (the paper's
+// condition (3 + ek)/(Rk) >= 1). Validate() rejects other parameters.
+//
+// Blob kernel (Rayshade 4.0 blob, Wyvill-like): f = s(1 − r²/R²)² for r < R, 0 beyond;
+//   f' = −4 s r (1 − r²/R²)/R²,  f'' = −(4s/R²)(1 − 3r²/R²),  f'/r = −(4s/R²)(1 − r²/R²).
+//
+// All valid kernels are non-increasing in r, which the interval bounds below use.
+#pragma once
+
+#include <string>
+
+namespace rs {
+
+enum class KernelKind { GascuelLinear, GascuelQuadratic, Blob };
+
+// Bounds of a kernel over a distance interval [rmin, rmax].
+struct KernelBounds {
+    double valueMin = 0, valueMax = 0;  // exact range of f (f is monotone)
+    double maxSlope = 0;                // max |f'| (exact up to the candidate-point method)
+    // max over the interval of max(|f''|, |f'|/r), one-sided values of f'' at the jumps
+    // included; +infinity when the interval reaches r = 0 and |f'|/r is unbounded there.
+    double maxCurvature = 0;
+};
+
+struct KernelStatus {
+    bool ok = true;
+    std::string message;  // names the skeleton when !ok
+};
+
+class Kernel {
+  public:
+    Kernel() = default;
+    static Kernel GascuelLinear(double thickness, double stiffness, double radius);
+    static Kernel GascuelQuadratic(double thickness, double stiffness, double radius);
+    static Kernel Blob(double strength, double radius);
+
+    KernelKind Kind() const { return kind_; }
+    double Radius() const { return radius_; }
+    double Thickness() const { return thickness_; }
+    double Stiffness() const { return stiffness_; }
+    double Strength() const { return strength_; }
+
+    // Checks the parameter conditions (0 < e < R, k > 0, k(R − e) <= 3; blob s > 0, R > 0).
+    KernelStatus Validate(const std::string& skeletonName) const;
+
+    double Value(double r) const;
+    double Derivative(double r) const;
+    // f'' with the value of the piece that contains r (pieces: [0, e], (e, R), [R, ∞)).
+    double SecondDerivative(double r) const;
+
+    // Bounds over [rmin, rmax] (0 <= rmin <= rmax). Requires a valid kernel.
+    KernelBounds Bounds(double rmin, double rmax) const;
+
+  private:
+    // One piece of the kernel on [lo, hi].
+    double PieceValue(int piece, double r) const;
+    double PieceDerivative(int piece, double r) const;
+    double PieceSecond(int piece, double r) const;
+    int PieceOf(double r) const;
+
+    KernelKind kind_ = KernelKind::Blob;
+    double thickness_ = 0, stiffness_ = 0, radius_ = 1, strength_ = 1;
+};
+
+}  // namespace rs

@@ -1,0 +1,411 @@
+#include "libobj/implicit/lg_octree.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "libcommon/error.h"
+#include "libcommon/stats.h"
+#include "libobj/implicit/root_finding.h"
+
+namespace rs {
+
+namespace {
+
+struct OctreeCounters {
+    CounterId cellsBuilt = RegisterCounter("Implicit octree cells built");
+    CounterId rangeFired = RegisterCounter("Implicit octree value-range prunes");
+    CounterId patchFired = RegisterCounter("Implicit octree patch-rule prunes");
+    CounterId h1Fired = RegisterCounter("Implicit octree heuristic 1 prunes");
+    CounterId h1bisFired = RegisterCounter("Implicit octree heuristic 1bis prunes");
+    CounterId h2Fired = RegisterCounter("Implicit octree heuristic 2 leaves");
+    CounterId h3Fired = RegisterCounter("Implicit octree heuristic 3 leaves");
+    CounterId h3bisFired = RegisterCounter("Implicit octree heuristic 3bis leaves");
+    CounterId budgetFired = RegisterCounter("Implicit octree memory-budget leaves");
+    CounterId h4Fired = RegisterCounter("Implicit octree heuristic 4 merges");
+    CounterId h5Fired = RegisterCounter("Implicit octree heuristic 5 merges");
+    CounterId cellsVisited = RegisterCounter("Implicit cells visited");
+    CounterId test0bis = RegisterCounter("Implicit test 0bis roots");
+    CounterId test1 = RegisterCounter("Implicit test 1 (L) rejections");
+    CounterId test2bisChord = RegisterCounter("Implicit test 2bis chord rejections");
+    CounterId monotoneNoRoot = RegisterCounter("Implicit monotone same-sign rejections");
+    CounterId test3 = RegisterCounter("Implicit test 3 single-root intervals");
+    CounterId splits = RegisterCounter("Implicit interval splits");
+    CounterId segmentBounds = RegisterCounter("Implicit segment bounds");
+    CounterId ridders = RegisterCounter("Implicit Ridders calls");
+    CounterId riddersIterations = RegisterCounter("Implicit Ridders iterations");
+    CounterId floorRoots = RegisterCounter("Implicit minimum-width roots");
+    CounterId unresolved = RegisterCounter("Implicit unresolved intervals");
+    CounterId rejectedRoots = RegisterCounter("Implicit roots rejected by predominance");
+};
+
+const OctreeCounters& Counters() {
+    static const OctreeCounters counters;
+    return counters;
+}
+
+bool Inside(double g) { return g > 0; }
+
+Bounds3 ChildBox(const Bounds3& box, int i) {
+    Vec3 c = box.Center();
+    Bounds3 b;
+    b.lo = {(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y, (i & 4) ? c.z : box.lo.z};
+    b.hi = {(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y, (i & 4) ? box.hi.z : c.z};
+    return b;
+}
+
+int ChildIndexOf(const Bounds3& box, const Vec3& p) {
+    Vec3 c = box.Center();
+    return (p.x >= c.x ? 1 : 0) | (p.y >= c.y ? 2 : 0) | (p.z >= c.z ? 4 : 0);
+}
+
+// The recursive per-leaf search of one ray (see the header for the tests).
+class RaySearch {
+  public:
+    RaySearch(const LGOctree& tree, const Ray& ray, double tMin, double tMax,
+              const std::function<bool(double)>& accept)
+        : tree_(tree),
+          s_(tree.Settings()),
+          ray_(ray),
+          tMin_(tMin),
+          tMax_(tMax),
+          accept_(accept),
+          dirLength_(Length(ray.dir)),
+          tolT_(s_.tolerance / dirLength_),
+          floorT_(std::max(s_.minWidth, s_.tolerance) / dirLength_) {}
+
+    double G(double t) const { return tree_.GetField().Value(ray_.At(t)) - tree_.Threshold(); }
+
+    // Searches one leaf span; true when an accepted root was found (in result).
+    bool Leaf(const LeafSpan& span) {
+        Count(Counters().cellsVisited);
+        double a = span.tEnter, b = span.tExit;
+        if (!(b >= a)) return false;
+        double ga = a == cachedT_ ? cachedG_ : G(a);
+        double gb = G(b);
+        cachedT_ = b;
+        cachedG_ = gb;
+        return Search(a, ga, b, gb, span.L * dirLength_, span.G * dirLength_ * dirLength_);
+    }
+
+    std::optional<double> result;
+
+  private:
+    bool Candidate(double t) {
+        if (!(t > tMin_ && t < tMax_)) return false;
+        if (accept_ && !accept_(t)) {
+            Count(Counters().rejectedRoots);
+            return false;
+        }
+        result = t;
+        return true;
+    }
+
+    bool Ridders(double a, double ga, double b, double gb) {
+        Count(Counters().ridders);
+        auto f = [this](double t) { return G(t); };
+        std::optional<RootResult> r = RiddersRoot(f, a, ga, b, gb, tolT_, s_.maxRiddersIterations);
+        if (!r) {
+            // Only when maxRiddersIterations is set too low for the bracket: finish by
+            // bisection rather than lose the root.
+            r = BisectRoot(f, a, ga, b, gb, tolT_, 2000);
+            if (!r) return false;
+        }
+        Count(Counters().riddersIterations, r->iterations);
+        return Candidate(r->root);
+    }
+
+    bool Floor(double a, double ga, double b, double gb) {
+        if (Inside(ga) != Inside(gb) || ga == 0 || gb == 0) {
+            Count(Counters().floorRoots);
+            return Ridders(a, ga, b, gb);
+        }
+        double m = 0.5 * (a + b);
+        double gm = G(m);
+        if (Inside(gm) != Inside(ga) || gm == 0) {
+            Count(Counters().floorRoots);
+            return Candidate(m);
+        }
+        Count(Counters().unresolved);
+        return false;
+    }
+
+    // lt, gt: the parametric bounds Lt, Gt valid on [a, b].
+    bool Search(double a, double ga, double b, double gb, double lt, double gt) {
+        double lambda = b - a;
+        if (s_.useTest0bis && ga == 0) {
+            Count(Counters().test0bis);
+            if (Candidate(a)) return true;
+        }
+        if (lambda <= floorT_) return Floor(a, ga, b, gb);
+        if (!(gt * lambda <= 2 * lt)) {
+            // G is too weak for test 3 ever to fire here (|g'| <= Lt < Gt·λ/2), typically
+            // because the leaf touches a point where F is not C² (a linear kernel's
+            // skeleton, a circle's axis, a polyline's kink) or comes very close to one:
+            // bound the segment's own box instead, which is finite once the segment avoids
+            // those points (research note §5's local bounds). Both bounds hold on [a, b];
+            // keep the smaller L and the segment's G.
+            Count(Counters().segmentBounds);
+            FieldBound local = tree_.GetField().Bound(Bounds3(ray_.At(a), ray_.At(b)));
+            lt = std::min(lt, local.L * dirLength_);
+            gt = std::min(gt, local.G * dirLength_ * dirLength_);
+        }
+        bool signChange = Inside(ga) != Inside(gb) || gb == 0;
+        if (!signChange) {
+            if (s_.useTest1 && std::abs(ga) + std::abs(gb) > lt * lambda) {
+                Count(Counters().test1);
+                return false;
+            }
+            if (s_.useTest2bis && std::min(std::abs(ga), std::abs(gb)) > gt * lambda * lambda / 8) {
+                Count(Counters().test2bisChord);
+                return false;
+            }
+        }
+        double m = 0.5 * (a + b);
+        if ((s_.useTest3 || (s_.useTest2bis && !signChange)) && std::isfinite(gt)) {
+            double slope = Dot(tree_.GetField().Gradient(ray_.At(m)), ray_.dir);
+            if (std::abs(slope) > gt * lambda / 2) {
+                if (!signChange) {
+                    Count(Counters().monotoneNoRoot);
+                    return false;
+                }
+                if (s_.useTest3) {
+                    Count(Counters().test3);
+                    return Ridders(a, ga, b, gb);
+                }
+            }
+        }
+        Count(Counters().splits);
+        double gm = G(m);
+        return Search(a, ga, m, gm, lt, gt) || Search(m, gm, b, gb, lt, gt);
+    }
+
+    const LGOctree& tree_;
+    const OctreeSettings& s_;
+    Ray ray_;
+    double tMin_, tMax_;
+    const std::function<bool(double)>& accept_;
+    double dirLength_, tolT_, floorT_;
+    double cachedT_ = std::nan(""), cachedG_ = 0;
+};
+
+}  // namespace
+
+OctreeSettings OctreeSettings::Kb89() {
+    OctreeSettings s;
+    s.useValueRange = false;
+    s.useHeuristic1bis = false;
+    s.useHeuristic3bis = false;
+    s.dRatio = -1;
+    s.useHeuristic4 = false;
+    s.useHeuristic5 = false;
+    s.usePredominancePruning = false;
+    s.useTest0bis = false;
+    s.useTest2bis = false;
+    return s;
+}
+
+LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
+                   const OctreeSettings& settings, int ownTerm)
+    : field_(std::move(field)),
+      threshold_(threshold),
+      ownTerm_(ownTerm),
+      box_(box),
+      settings_(settings) {
+    if (box_.IsEmpty()) return;
+    root_ = Build(box_, 0);
+    if (degraded_) {
+        Report(Severity::Warn, {},
+               "implicit octree: memory budget of %zu bytes reached; some cells stop above "
+               "depth %d (slower, still exact)",
+               settings_.memoryBudget, settings_.maxDepth);
+    }
+}
+
+std::size_t LGOctree::MemoryBytes() const {
+    return internals_.size() * sizeof(Internal) + leaves_.size() * sizeof(Leaf);
+}
+
+// False when some other term's smallest value over the box exceeds the own term's largest
+// (strictly, so even a tie won by the lower index is impossible).
+bool LGOctree::OwnMayPredominate(const Bounds3& box) const {
+    double ownLo, ownHi;
+    field_.TermRange(ownTerm_, box, ownLo, ownHi);
+    for (int j = 0; j < field_.Size(); ++j) {
+        if (j == ownTerm_) continue;
+        double lo, hi;
+        field_.TermRange(j, box, lo, hi);
+        if (lo > ownHi) return false;
+    }
+    return true;
+}
+
+LGOctree::Ref LGOctree::MakeLeaf(double L, double G) {
+    leaves_.push_back({L, G});
+    return kFirstLeafRef - static_cast<Ref>(leaves_.size() - 1);
+}
+
+LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth) {
+    const OctreeCounters& c = Counters();
+    Count(c.cellsBuilt);
+    const OctreeSettings& s = settings_;
+    FieldBound fb = field_.Bound(box);
+    if (s.useValueRange) {
+        if (fb.valueMin > threshold_) {
+            Count(c.rangeFired);
+            return kFullRef;
+        }
+        if (fb.valueMax < threshold_) {
+            Count(c.rangeFired);
+            return kEmptyRef;
+        }
+    }
+    if (s.usePredominancePruning && ownTerm_ >= 0 && !OwnMayPredominate(box)) {
+        Count(c.patchFired);
+        return kEmptyRef;
+    }
+    Vec3 centre = box.Center();
+    double b = HalfDiagonal(box);
+    double gc = field_.Value(centre) - threshold_;
+    Ref mark = gc > 0 ? kFullRef : kEmptyRef;
+    if (s.useHeuristic1 && std::abs(gc) > b * fb.L) {
+        Count(c.h1Fired);
+        return mark;
+    }
+    if (s.useHeuristic1bis && std::isfinite(fb.G)) {
+        double grad = Length(field_.Gradient(centre));
+        if (std::abs(gc) > b * grad + 0.5 * b * b * fb.G) {
+            Count(c.h1bisFired);
+            return mark;
+        }
+    }
+    if (depth >= s.maxDepth) {
+        Count(c.h2Fired);
+        return MakeLeaf(fb.L, fb.G);
+    }
+    // Heuristics 3 and 3bis stop early only where G is finite: a leaf with infinite G would
+    // leave the search no curvature bound at all.
+    if (depth >= s.minDepth && std::isfinite(fb.G)) {
+        if (s.useHeuristic3) {
+            bool anyIn = gc > 0, anyOut = gc <= 0;
+            for (int i = 0; i < 8 && !(anyIn && anyOut); ++i) {
+                bool in = field_.Value(box.Corner(i)) > threshold_;
+                anyIn |= in;
+                anyOut |= !in;
+            }
+            if (anyIn && anyOut) {
+                Count(c.h3Fired);
+                return MakeLeaf(fb.L, fb.G);
+            }
+        }
+        if (s.useHeuristic3bis && fb.minDistance > 0 && b / fb.minDistance < s.dRatio) {
+            Count(c.h3bisFired);
+            return MakeLeaf(fb.L, fb.G);
+        }
+    }
+    if (MemoryBytes() + sizeof(Internal) + 8 * sizeof(Leaf) > s.memoryBudget) {
+        Count(c.budgetFired);
+        degraded_ = true;
+        return MakeLeaf(fb.L, fb.G);
+    }
+    // Subdivide. Children's nodes are allocated after this point, so a merge below can
+    // release them by truncating both arrays (stack-like allocation).
+    std::size_t internalMark = internals_.size(), leafMark = leaves_.size();
+    Internal node;
+    for (int i = 0; i < 8; ++i) node.child[i] = Build(ChildBox(box, i), depth + 1);
+    bool allEmpty = true, allFull = true, allLeaves = true;
+    double maxChildG = 0;
+    for (Ref r : node.child) {
+        allEmpty &= r == kEmptyRef;
+        allFull &= r == kFullRef;
+        allLeaves &= r <= kFirstLeafRef;
+        if (r <= kFirstLeafRef) maxChildG = std::max(maxChildG, leaves_[kFirstLeafRef - r].G);
+    }
+    if (s.useHeuristic4 && (allEmpty || allFull)) {
+        Count(c.h4Fired);
+        internals_.resize(internalMark);
+        leaves_.resize(leafMark);
+        return allEmpty ? kEmptyRef : kFullRef;
+    }
+    if (s.useHeuristic5 && allLeaves && maxChildG >= s.h5GRatio * fb.G) {
+        Count(c.h5Fired);
+        internals_.resize(internalMark);
+        leaves_.resize(leafMark);
+        return MakeLeaf(fb.L, fb.G);
+    }
+    internals_.push_back(node);
+    return static_cast<Ref>(internals_.size() - 1);
+}
+
+bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
+                     const std::function<bool(const LeafSpan&)>& visit) const {
+    if (ref == kEmptyRef || ref == kFullRef) return false;
+    if (ref <= kFirstLeafRef) {
+        const Leaf& leaf = leaves_[kFirstLeafRef - ref];
+        return visit({t0, t1, leaf.L, leaf.G});
+    }
+    const Internal& node = internals_[ref];
+    // Split [t0, t1] where the ray crosses the three mid-planes; each piece lies in one
+    // child, found from the piece's midpoint.
+    Vec3 c = box.Center();
+    double cuts[5];
+    int n = 0;
+    cuts[n++] = t0;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (ray.dir[axis] == 0) continue;
+        double t = (c[axis] - ray.origin[axis]) / ray.dir[axis];
+        if (t > t0 && t < t1) cuts[n++] = t;
+    }
+    for (int i = 2; i < n; ++i) {  // insertion sort of the (at most three) plane crossings
+        for (int j = i; j > 1 && cuts[j] < cuts[j - 1]; --j) std::swap(cuts[j], cuts[j - 1]);
+    }
+    cuts[n++] = t1;
+    for (int i = 0; i + 1 < n; ++i) {
+        double a = cuts[i], b = cuts[i + 1];
+        if (b <= a && n > 2) continue;
+        int child = ChildIndexOf(box, ray.At(0.5 * (a + b)));
+        if (Visit(node.child[child], ChildBox(box, child), ray, a, b, visit)) return true;
+    }
+    return false;
+}
+
+void LGOctree::Traverse(const Ray& ray, double tMin, double tMax,
+                        const std::function<bool(const LeafSpan&)>& visit) const {
+    if (box_.IsEmpty()) return;
+    double t0 = tMin, t1 = tMax;
+    if (!box_.ClipRay(ray, t0, t1)) return;
+    Visit(root_, box_, ray, t0, t1, visit);
+}
+
+CellClass LGOctree::Classify(const Vec3& p) const {
+    if (box_.IsEmpty() || !box_.Contains(p)) return CellClass::Empty;
+    Ref ref = root_;
+    Bounds3 box = box_;
+    while (ref >= 0) {
+        int child = ChildIndexOf(box, p);
+        box = ChildBox(box, child);
+        ref = internals_[ref].child[child];
+    }
+    if (ref == kEmptyRef) return CellClass::Empty;
+    if (ref == kFullRef) return CellClass::Full;
+    return CellClass::Leaf;
+}
+
+std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tMax,
+                                          const std::function<bool(double)>& accept) const {
+    if (LengthSquared(ray.dir) == 0 || !(tMax > tMin)) return std::nullopt;
+    RaySearch search(*this, ray, tMin, tMax, accept);
+    Traverse(ray, tMin, tMax, [&search](const LeafSpan& span) { return search.Leaf(span); });
+    return search.result;
+}
+
+LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings) {
+    return LGOctree(patch.GetField(), threshold, patch.Box(), settings, 0);
+}
+
+std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,
+                                     const Ray& ray, double tMin, double tMax) {
+    return octree.FirstRoot(ray, tMin, tMax,
+                            [&](double t) { return patch.Predominates(ray.At(t)); });
+}
+
+}  // namespace rs

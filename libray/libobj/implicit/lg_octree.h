@@ -1,0 +1,193 @@
+// Layer 6 of the implicit module: Kalra–Barr LG octrees with Gascuel's improvements
+// (Kalra & Barr, SIGGRAPH '89; Gascuel 1995 §3.1–3.4), and the guaranteed first-root
+// search along a ray.
+//
+// Notation: g(p) = F(p) − T for the octree's field F and threshold T (inside: g > 0). For a
+// cell with centre C and half diagonal b, Bound(cell) gives L >= |∇F| and G >= |second
+// directional derivative of F| (field.h). Along a ray p(t) = o + t·d the parametric bounds
+// are Lt = L|d| and Gt = G|d|², since d/dt = d·∇ and d²/dt² = dᵀ∇²F d.
+//
+// Build heuristics (in the order applied; each but 2 switchable in OctreeSettings):
+//   range  (ours)  Bound's value interval excludes T  → Full/Empty. Sound: it contains F.
+//   1      |g(C)| > bL → Full/Empty by the sign of g(C). Sound: |F(p) − F(C)| <= L|p − C|.
+//   1bis   |g(C)| > b‖∇F(C)‖ + ½b²G → Full/Empty. Sound: Taylor along C→p with integral
+//          remainder, F being C¹ and piecewise C² (the paper omits the ½: conservative).
+//   2      depth == maxDepth → leaf (always on: it guarantees termination).
+//   3      depth >= minDepth, G finite, and the signs of g at the 8 corners and the centre
+//          differ → leaf.
+//   3bis   depth >= minDepth, G finite, and b/min < dRatio → leaf, min being the smallest
+//          distance to an active skeleton (subdividing a cell small compared with its
+//          distance to the skeletons barely tightens L and G). dRatio = −1 never fires
+//          (≈ KB89).
+//   budget when the node memory would exceed memoryBudget → leaf, and one warning per tree.
+//   patch  (Gascuel §3.4, patch octrees only) some neighbour's smallest contribution over
+//          the cell exceeds the own term's largest → Empty: no root in the cell can be
+//          accepted, so the tree only covers the part of the patch box where the own
+//          skeleton may predominate. Tested right after the value-range test.
+//   4      after subdivision: all eight children Full (or all Empty) → parent likewise.
+//   5      after subdivision: all children leaves and max child G >= h5GRatio·G → one
+//          leaf with the parent's L and G (still valid on every child).
+// Empty/Full cells take no memory (tagged child references); leaves store L and G.
+//
+// Per-leaf search over [tA, tB] (λ = tB − tA, gA, gB the end values, tm the midpoint), in
+// their sound forms (research note §4.2); each but 2 switchable:
+//   0bis   gA == 0 → candidate root tA.
+//   1      same sign and |gA| + |gB| > Lt·λ → no root (g would have to fall to 0 and
+//          climb back within slope Lt).
+//   2      λ <= minimum width → the floor policy below (always on: termination).
+//   2bis   same sign: chord bound min(|gA|, |gB|) > Gt·λ²/8 → no root (g stays within
+//          Gtλ²/8 of its chord); then, with the directional derivative g'(tm),
+//          |g'(tm)| > Gt·λ/2 → g monotone → no root.
+//   3      |g'(tm)| > Gt·λ/2 → g' ≠ 0 on [tA, tB] (|g'(t) − g'(tm)| <= Gt|t − tm|), at most
+//          one root, present iff the ends' signs differ: solve with Ridders, or report no
+//          root when the signs agree (the same conclusion as 2bis's second part).
+//          Otherwise split at tm and search the near half first.
+// Where G is too weak for test 3 ever to fire (Gt·λ > 2Lt; e.g. infinite because the leaf
+// touches a linear kernel's skeleton, a circle's axis or a polyline's kinks), each segment
+// is bounded by Field::Bound over its own box (a per-segment bound in the spirit of segment
+// tracing), finite once the segment avoids those points; tests needing G are skipped while
+// it stays infinite.
+// Floor (minimum width / tangency) policy, identical for every ray: a segment no longer
+// than minWidth whose ends differ in sign yields its root (Ridders to the tolerance);
+// otherwise g is evaluated at its midpoint and a sign opposite to the ends' reports the
+// midpoint as a root (the ray enters and leaves within the segment); otherwise no root is
+// reported and the segment is counted as unresolved. So a ray is reported as hitting only
+// where a sign change was observed, and tangential contacts shorter than minWidth that rise
+// above the threshold by less than Gt·minWidth²/32 (the chord bound on each half) are
+// misses.
+//
+// Guarantee: with sound bounds, every root returned lies within `tolerance` of a sign
+// change of g along the ray, and no sign change earlier along the ray (in leaves wider
+// than the floor) is skipped.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "libcommon/ray.h"
+#include "libobj/implicit/patch.h"
+
+namespace rs {
+
+struct OctreeSettings {
+    // Octree depth limits (Gascuel's tables: max depth 4–10, min depth 3). minDepth is the
+    // "deep enough" of heuristics 3 and 3bis. Measured on 60 blended point skeletons (the
+    // research note's §12 parameters, 20 000 rays): min depth 2 / 3 / 4 / 5 gave 131 / 62 /
+    // 31 / 20 field plus gradient evaluations per ray for 1 / 4 / 10 / 29 KB of tree per
+    // patch and 1 / 1.5 / 4 / 13 ms of build per patch; 4 is the knee.
+    int maxDepth = 6;
+    int minDepth = 4;
+    bool useValueRange = true;
+    bool useHeuristic1 = true;
+    bool useHeuristic1bis = true;
+    bool useHeuristic3 = true;
+    bool useHeuristic3bis = true;
+    double dRatio = 2;  // Gascuel's value; −1 disables 3bis
+    bool useHeuristic4 = true;
+    bool useHeuristic5 = true;
+    bool usePredominancePruning = true;  // the "patch" rule; needs an own term
+    double h5GRatio = 0.9;  // "not too different": children keep >= 90 % of the parent's G
+    // Node memory per tree (internal nodes 32 bytes, leaves 16 bytes). A cell subdivides
+    // only while one more internal node and eight leaves fit, so the tree may overshoot the
+    // budget by at most that much (160 bytes) per level of the path being built.
+    std::size_t memoryBudget = std::size_t(64) << 20;
+
+    // Search. Root accuracy and splitting floor, as object-space distances.
+    double tolerance = 1e-7;
+    double minWidth = 1e-7;
+    int maxRiddersIterations = 60;
+    bool useTest0bis = true;
+    bool useTest1 = true;
+    bool useTest2bis = true;
+    bool useTest3 = true;
+
+    // Kalra & Barr 1989 as summarised by Gascuel: heuristics 1, 2, 3 and tests 1, 2, 3 only.
+    // The per-segment bounds stay on: KB89's G lacked the |f'|/r term, so it was never
+    // infinite, while ours is near linear-kernel skeletons and without them the search
+    // would split such spans down to the floor.
+    static OctreeSettings Kb89();
+};
+
+// A leaf met by a ray: the parametric span [tEnter, tExit] and the leaf's bounds.
+struct LeafSpan {
+    double tEnter = 0, tExit = 0;
+    double L = 0, G = 0;
+};
+
+enum class CellClass { Empty, Full, Leaf };
+
+class LGOctree {
+  public:
+    // Builds the tree of g = F − T over `box` (the field is copied). With ownTerm >= 0 the
+    // tree serves a patch whose own term is field term `ownTerm`: cells where that term
+    // cannot predominate are marked Empty (the "patch" rule), so FirstRoot then only
+    // finds roots an `accept` predominance test could keep.
+    LGOctree(Field field, double threshold, const Bounds3& box, const OctreeSettings& settings,
+             int ownTerm = -1);
+
+    const Field& GetField() const { return field_; }
+    double Threshold() const { return threshold_; }
+    const Bounds3& Box() const { return box_; }
+    const OctreeSettings& Settings() const { return settings_; }
+
+    // Calls `visit` for every leaf the ray meets within [tMin, tMax], in ray order, with
+    // the span clipped to [tMin, tMax]; stops early when `visit` returns true.
+    void Traverse(const Ray& ray, double tMin, double tMax,
+                  const std::function<bool(const LeafSpan&)>& visit) const;
+
+    // The class of the cell containing p (Empty outside the root box). Full: g > 0 in the
+    // cell; Empty: g < 0 in the cell, or (patch rule) no predominant point in it.
+    CellClass Classify(const Vec3& p) const;
+
+    // The first t in (tMin, tMax) where g changes sign along the ray (to the tolerance) and
+    // `accept(t)` holds; rejected roots are skipped and the search continues past them.
+    std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax,
+                                    const std::function<bool(double)>& accept = {}) const;
+
+    int InternalCount() const { return static_cast<int>(internals_.size()); }
+    int LeafCount() const { return static_cast<int>(leaves_.size()); }
+    std::size_t MemoryBytes() const;
+    // True when the memory budget stopped subdivision somewhere.
+    bool Degraded() const { return degraded_; }
+
+  private:
+    // Child reference: >= 0 internal node index; kEmptyRef, kFullRef; <= kFirstLeafRef leaf.
+    using Ref = int32_t;
+    static constexpr Ref kEmptyRef = -1, kFullRef = -2, kFirstLeafRef = -3;
+    struct Internal {
+        Ref child[8];
+    };
+    struct Leaf {
+        double L, G;
+    };
+
+    Ref Build(const Bounds3& box, int depth);
+    bool OwnMayPredominate(const Bounds3& box) const;
+    Ref MakeLeaf(double L, double G);
+    bool Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
+               const std::function<bool(const LeafSpan&)>& visit) const;
+
+    Field field_;
+    double threshold_;
+    int ownTerm_;
+    Bounds3 box_;
+    OctreeSettings settings_;
+    std::vector<Internal> internals_;
+    std::vector<Leaf> leaves_;
+    Ref root_ = kEmptyRef;
+    bool degraded_ = false;
+};
+
+// The octree of a patch: its field over its box, with the patch rule for its own term.
+LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings);
+
+// The first root of a patch along the ray in (tMin, tMax): a root of the patch field where
+// the patch's own term predominates (patch.h), continuing past rejected roots. `octree`
+// must come from BuildPatchOctree(patch, ...).
+std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,
+                                     const Ray& ray, double tMin, double tMax);
+
+}  // namespace rs

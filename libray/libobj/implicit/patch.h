@@ -1,0 +1,60 @@
+// Layer 5 of the implicit module: implicit patches (Gascuel 1995 §2, §2.1, §3.4).
+//
+// An object is a list of terms (skeleton, kernel, weight), indexed 0..n−1. Every term of
+// positive weight owns one patch. A patch's field is its own term plus its neighbours'
+// terms; the patch's surface is the part of {patch field = T} where the own term
+// predominates, and the object is the union of the patches.
+//
+// Neighbours:
+//   - automatic: every other term whose support box overlaps the own support box. At any
+//     point where the own term is positive, every non-zero term is then in the list, so the
+//     patch field equals the full sum there and the union of patches is exactly the surface
+//     of the plain sum (the own term is positive wherever it predominates on the surface,
+//     since F = T > 0 needs a positive term and the own one is the largest);
+//   - explicit blend graph: only declared pairs blend. Non-blending parts form separate
+//     surfaces whose union is rendered (with a crease where they overlap).
+//
+// Predominance at p: for every neighbour j, c_own > c_j, or c_own == c_j and own < j
+// (c = w·f(d), signed), so exactly one term wins any tie, the lowest index.
+//
+// Patch box: the own support box (skeleton box padded by R). Accepted roots lie inside it,
+// because the own term must be positive there (see above; requires threshold T > 0).
+// Negative-weight terms own no patch: where the surface exists some positive term exceeds
+// them.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "libobj/implicit/field.h"
+
+namespace rs {
+
+class Patch {
+  public:
+    // `members` are global term indices, the own term first.
+    Patch(const std::vector<FieldTerm>& allTerms, std::vector<int> members);
+
+    int Own() const { return members_.front(); }
+    const std::vector<int>& Members() const { return members_; }
+    // The patch field: terms in the order of Members() (own term at index 0).
+    const Field& GetField() const { return field_; }
+    const Bounds3& Box() const { return box_; }
+
+    // Whether the own term predominates at p (ties to the lowest global index).
+    bool Predominates(const Vec3& p) const;
+
+  private:
+    std::vector<int> members_;
+    Field field_;
+    Bounds3 box_;
+};
+
+enum class BlendMode { Automatic, Explicit };
+
+// Builds one patch per positive-weight term. In Explicit mode `blendPairs` lists the term
+// index pairs that blend (symmetric; others are ignored); in Automatic mode it is unused.
+std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode mode,
+                                const std::vector<std::pair<int, int>>& blendPairs = {});
+
+}  // namespace rs
