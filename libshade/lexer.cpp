@@ -8,7 +8,8 @@ namespace rs {
 
 namespace {
 
-// Spec §1.3: every keyword, mapped to its canonical spelling. Synonyms map to the spelling
+// Spec §1.3: every keyword, mapped to its canonical spelling, plus `implicit`, our
+// Implicit Patches primitive (libray/libobj/implicit/README.md). Synonyms map to the spelling
 // the grammar uses; `samples` (the quick reference's spelling) is accepted for `sample`.
 const std::unordered_map<std::string, std::string>& KeywordTable() {
     static const std::unordered_map<std::string, std::string> table = [] {
@@ -21,7 +22,8 @@ const std::unordered_map<std::string, std::string>& KeywordTable() {
             "directional", "disc",        "end",          "extended",  "extinct",    "eyep",
             "eyesep",      "fbm",         "fbmbump",      "filter",    "focaldist",  "fog",
             "fogdeck",     "fov",         "framelength",  "frames",    "gauss",      "gloss",
-            "grid",        "heightfield", "image",        "index",     "intersect",  "jitter",
+            "grid",        "heightfield", "image",        "implicit",  "index",      "intersect",
+            "jitter",
             "light",       "list",        "lookp",        "map",       "marble",     "maxdepth",
             "mist",        "mount",       "name",         "nojitter",  "noshadow",   "object",
             "outfile",     "planar",      "plane",        "point",     "poly",       "print",
