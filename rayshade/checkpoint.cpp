@@ -12,7 +12,7 @@ namespace rs {
 
 namespace {
 
-constexpr char kMagic[] = "RAYSHADE-PARTIAL 1\n";
+constexpr char kMagic[] = "RAYSHADE-PARTIAL 2\n";
 // Sizes beyond these cannot come from a render we would start (see main.cpp's limits).
 constexpr uint64_t kMaxPixels = (1ULL << 28) + (1ULL << 16);
 constexpr uint64_t kMaxFingerprint = 1 << 20;
@@ -78,9 +78,9 @@ bool SaveFrameState(const std::string& path, const std::string& fingerprint,
         for (long t : state.todo) w.Put<int64_t>(t);
         w.Put<uint64_t>(state.pixels.size());
         for (const PixelState& p : state.pixels) {
-            w.Put(p.value.r);
-            w.Put(p.value.g);
-            w.Put(p.value.b);
+            w.Put(p.r);
+            w.Put(p.g);
+            w.Put(p.b);
             w.Put(p.alpha);
             w.Put(p.singleCell);
             w.Put<uint8_t>(static_cast<uint8_t>((p.sampled ? 1 : 0) | (p.supersampled ? 2 : 0)));
@@ -141,7 +141,7 @@ bool LoadFrameState(const std::string& path, const std::string& fingerprint, Fra
     state.pixels.resize(count);
     for (PixelState& p : state.pixels) {
         uint8_t flags = 0;
-        if (!r.Get(p.value.r) || !r.Get(p.value.g) || !r.Get(p.value.b) || !r.Get(p.alpha) ||
+        if (!r.Get(p.r) || !r.Get(p.g) || !r.Get(p.b) || !r.Get(p.alpha) ||
             !r.Get(p.singleCell) || !r.Get(flags))
             return damaged();
         p.sampled = flags & 1;

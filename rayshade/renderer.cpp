@@ -106,7 +106,7 @@ void Renderer::TakeSingleSample(int x, int y, Pixel& px) const {
     int cells = pattern_.Cells();
     px.singleCell = static_cast<int16_t>(std::min(cells - 1, static_cast<int>(rng.Uniform() * cells)));
     double alpha = 0;
-    px.value = SampleCell(absX, absY, px.singleCell, rng, alpha);
+    px.SetValue(SampleCell(absX, absY, px.singleCell, rng, alpha));
     px.alpha = static_cast<float>(alpha);
     px.sampled = true;
 }
@@ -118,7 +118,7 @@ void Renderer::Supersample(int x, int y, Pixel& px) const {
     for (int cell = 0; cell < pattern_.Cells(); ++cell) {
         double w = pattern_.Weight(cell);
         if (cell == px.singleCell) {
-            sum += px.value * w;
+            sum += px.Value() * w;
             alpha += px.alpha * w;
             continue;
         }
@@ -127,7 +127,7 @@ void Renderer::Supersample(int x, int y, Pixel& px) const {
         sum += SampleCell(absX, absY, cell, rng, a) * w;
         alpha += a * w;
     }
-    px.value = sum;
+    px.SetValue(sum);
     px.alpha = static_cast<float>(alpha);
     px.supersampled = true;
     Count(kSupersampled);
@@ -137,9 +137,9 @@ bool Renderer::NeedsRefinement(const std::vector<Pixel>& pixels, int x, int y) c
     const int w = window_.Width();
     const Pixel* five[5] = {&pixels[y * w + x], &pixels[y * w + x - 1], &pixels[y * w + x + 1],
                             &pixels[(y - 1) * w + x], &pixels[(y + 1) * w + x]};
-    Color lo = five[0]->value, hi = lo;
+    Color lo = five[0]->Value(), hi = lo;
     for (const Pixel* p : five) {
-        const Color& c = p->value;
+        const Color c = p->Value();
         lo = {std::min(lo.r, c.r), std::min(lo.g, c.g), std::min(lo.b, c.b)};
         hi = {std::max(hi.r, c.r), std::max(hi.g, c.g), std::max(hi.b, c.b)};
     }
@@ -157,21 +157,6 @@ std::atomic<bool> gStopRequested{false};
 
 void RequestStop() { gStopRequested.store(true, std::memory_order_relaxed); }
 bool StopRequested() { return gStopRequested.load(std::memory_order_relaxed); }
-
-std::vector<long> Renderer::RefinementTodo(const FrameState& state,
-                                           const std::vector<long>& candidates) const {
-    const int w = state.width;
-    std::vector<long> todo;
-    for (long c : candidates) {
-        if (!NeedsRefinement(state.pixels, static_cast<int>(c % w), static_cast<int>(c / w)))
-            continue;
-        for (long n : {c, c - 1, c + 1, c - w, c + w})
-            if (!state.pixels[n].supersampled) todo.push_back(n);
-    }
-    std::sort(todo.begin(), todo.end());
-    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
-    return todo;
-}
 
 Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameState* resumeFrom,
                             CheckpointFn checkpoint, double checkpointSeconds) {
@@ -252,33 +237,47 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
 
     // 3. Contrast refinement until a pass changes nothing. The first pass tests every
     // interior pixel; later passes only the pixels whose five-pixel neighbourhood contains
-    // one that the previous pass supersampled (no other test result can change).
-    while (state.phase == Phase::Refinement) {
-        ParallelFor(static_cast<long>(state.todo.size()), [&](long i) {
-            long idx = state.todo[i];
-            if (!pixels[idx].supersampled)
-                Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
-        });
-        report(static_cast<long>(state.todo.size()) / 4);
-        safePoint();
-        std::vector<long> candidates;
-        if (state.pass == 0) {
-            for (int y = 1; y < h; ++y)
-                for (int x = 1; x < w - 1; ++x) candidates.push_back(static_cast<long>(y) * w + x);
-        } else {
-            for (long t : state.todo) {
-                for (long n : {t, t - 1, t + 1, t - w, t + w}) {
-                    if (n < 0 || n >= static_cast<long>(pixels.size())) continue;
-                    int x = static_cast<int>(n % w), y = static_cast<int>(n / w);
-                    if (x >= 1 && x <= w - 2 && y >= 1 && y <= h - 1) candidates.push_back(n);
+    // one that the previous pass supersampled (no other test result can change). The order
+    // of the lists does not matter: each pixel's samples depend on the pixel alone.
+    if (state.phase == Phase::Refinement) {
+        std::vector<int> testedInPass(pixels.size(), -1), queuedInPass(pixels.size(), -1);
+        auto isInterior = [&](long n) {
+            long x = n % w, y = n / w;
+            return x >= 1 && x <= w - 2 && y >= 1 && y <= h - 1;
+        };
+        while (state.phase == Phase::Refinement) {
+            ParallelFor(static_cast<long>(state.todo.size()), [&](long i) {
+                long idx = state.todo[i];
+                if (!pixels[idx].supersampled)
+                    Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
+            });
+            report(static_cast<long>(state.todo.size()) / 4);
+            safePoint();
+
+            const int pass = state.pass;
+            std::vector<long> next;
+            auto test = [&](long c) {
+                if (testedInPass[c] == pass) return;
+                testedInPass[c] = pass;
+                if (!NeedsRefinement(pixels, static_cast<int>(c % w), static_cast<int>(c / w))) return;
+                for (long n : {c, c - 1, c + 1, c - w, c + w}) {
+                    if (pixels[n].supersampled || queuedInPass[n] == pass) continue;
+                    queuedInPass[n] = pass;
+                    next.push_back(n);
                 }
+            };
+            if (pass == 0) {
+                for (int y = 1; y < h; ++y)
+                    for (int x = 1; x < w - 1; ++x) test(static_cast<long>(y) * w + x);
+            } else {
+                for (long t : state.todo)
+                    for (long n : {t, t - 1, t + 1, t - w, t + w})
+                        if (n >= 0 && n < static_cast<long>(pixels.size()) && isInterior(n)) test(n);
             }
-            std::sort(candidates.begin(), candidates.end());
-            candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+            state.todo = std::move(next);
+            ++state.pass;
+            if (state.todo.empty()) state.phase = Phase::Done;
         }
-        state.todo = RefinementTodo(state, candidates);
-        ++state.pass;
-        if (state.todo.empty()) state.phase = Phase::Done;
     }
     if (progress_) progress_(totalWork, totalWork);
     return Encode(state, withAlpha);
@@ -297,9 +296,9 @@ Image Renderer::Encode(const FrameState& state, bool withAlpha) const {
         uint8_t* out = image.Row(y);
         for (int x = 0; x < w; ++x) {
             const Pixel& px = state.pixels[static_cast<size_t>(y) * w + x];
-            *out++ = EncodeChannel(px.value.r, exponent);
-            *out++ = EncodeChannel(px.value.g, exponent);
-            *out++ = EncodeChannel(px.value.b, exponent);
+            *out++ = EncodeChannel(px.r, exponent);
+            *out++ = EncodeChannel(px.g, exponent);
+            *out++ = EncodeChannel(px.b, exponent);
             if (withAlpha) *out++ = EncodeChannel(px.alpha, 1);
         }
     }

@@ -34,14 +34,21 @@ RenderWindow ComputeWindow(const RenderOptions& options);
 using ProgressFn = std::function<void(long done, long total)>;
 
 // One pixel's state: its single sample until it is supersampled, then the filtered n×n
-// result (which reuses the single sample for its cell). Kept small: a frame holds one per
-// pixel.
+// result (which reuses the single sample for its cell). Kept small (20 bytes): a frame holds
+// one per pixel. Single precision is plenty for values that end as 8-bit channels.
 struct PixelState {
-    Color value;
+    float r = 0, g = 0, b = 0;
     float alpha = 0;
     int16_t singleCell = 0;
     bool sampled = false;       // the single sample has been taken
     bool supersampled = false;
+
+    Color Value() const { return {r, g, b}; }
+    void SetValue(const Color& c) {
+        r = static_cast<float>(c.r);
+        g = static_cast<float>(c.g);
+        b = static_cast<float>(c.b);
+    }
 };
 
 // Everything needed to continue a frame where it stopped; the renderer updates it as it
@@ -92,9 +99,6 @@ class Renderer {
     // a stop is requested.
     void ParallelFor(long count, const std::function<void(long)>& body) const;
     bool NeedsRefinement(const std::vector<Pixel>& pixels, int x, int y) const;
-    // The next refinement pass's pixels: every not-yet-supersampled pixel in the
-    // five-pixel neighbourhood of a candidate whose contrast exceeds the thresholds.
-    std::vector<long> RefinementTodo(const FrameState& state, const std::vector<long>& candidates) const;
     Image Encode(const FrameState& state, bool withAlpha) const;
     const Scene& scene_;
     const RenderOptions& options_;

@@ -27,6 +27,7 @@ class Box final : public Primitive {
     // Geometric (spec §3.10): entering iff the hit is where the ray's line enters the slab
     // intersection (hit.part 0), i.e. the ray was outside the box just before the hit.
     bool Enters(const Ray& ray, const PrimitiveHit& hit, const SurfaceNormals& n) const override;
+    int EntersFromHit(const PrimitiveHit& hit) const override { return hit.part == 0 ? 1 : 0; }
 
   private:
     Bounds3 bounds_;

@@ -74,6 +74,11 @@ class Primitive {
         return Dot(ray.dir, n.geometric) < 0;
     }
 
+    // The same answer as Enters when the hit payload alone decides it (solids that record
+    // whether they hit the near or the far root): 1 enters, 0 leaves, −1 when Enters must
+    // be asked. Lets CSG classify hits without computing normals.
+    virtual int EntersFromHit(const PrimitiveHit& /*hit*/) const { return -1; }
+
     // Called once per frame before rendering with the frame's start time, so primitives with
     // time-varying parameters (implicit skeletons) can rebuild their acceleration data.
     virtual void PrepareFrame(double /*frameTime*/) {}

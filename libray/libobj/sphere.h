@@ -25,6 +25,7 @@ class Sphere final : public Primitive {
     // the ray was outside the sphere just before the hit. hit.part is 0 for the near root
     // and 1 for the far root.
     bool Enters(const Ray& ray, const PrimitiveHit& hit, const SurfaceNormals& n) const override;
+    int EntersFromHit(const PrimitiveHit& hit) const override { return hit.part == 0 ? 1 : 0; }
 
   private:
     double radius_, radiusSquared_, invRadius_;
