@@ -16,8 +16,9 @@
 # (the "default any" row of the shared table). THRESHOLDS takes the scene name and
 # resolution (a number for a -R run, "default" for the scene's own size) of a row of
 # RAYSHADE_THRESHOLDS_FILE. IMGDIFF_ARGS passes further imgdiff options, e.g. stricter
-# single-metric thresholds (--max 0.004) for self-regression. On a failed comparison the reference is copied beside the
-# output as <name>.ref.png, so output, reference and heat map can be reviewed together.
+# single-metric thresholds (--max 0.004) for self-regression; they override the table's.
+# On a failed comparison the reference is copied beside the output as <name>.ref.png, so
+# output, reference and heat map can be reviewed together.
 #
 # Configured with -DRAYSHADE_UPDATE_REFERENCES=ON, the test instead renders and copies the
 # output over REFERENCE (which must then be writable: our own references, not the original
