@@ -83,6 +83,9 @@ int ColorType(int channels) {
 bool WritePngFrom(PngContext& context, std::FILE* file, const Image& image) {
     if (setjmp(png_jmpbuf(context.png))) return false;
     png_init_io(context.png, file);
+    // zlib level 3 instead of the default 6: encoding is serial work at the end of every
+    // frame, and level 3 is several times faster for files only a few percent larger.
+    png_set_compression_level(context.png, 3);
     png_set_IHDR(context.png, context.info, static_cast<png_uint_32>(image.width),
                  static_cast<png_uint_32>(image.height), 8, ColorType(image.channels),
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
