@@ -2,7 +2,7 @@
 // each part of a primitive in its own colour, like figure 3b of Gascuel's Implicit Patches
 // paper. The part is PrimitiveHit::part: the patch index for `implicit` surfaces (the
 // predominant skeleton's patch), and whatever else a primitive stores there (the triangle of
-// a heightfield, 0/1 for the outside/inside of spheres and boxes). Parts < 0 ("no part",
+// a heightfield, 0 or 1 for a ray entering or leaving a sphere or a box). Parts < 0 ("no part",
 // e.g. `method kb89`) leave the surface unchanged. The texture takes no arguments and
 // ignores its transforms.
 #pragma once
