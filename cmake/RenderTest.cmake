@@ -16,7 +16,8 @@
 # (the "default any" row of the shared table). THRESHOLDS takes the scene name and
 # resolution (a number for a -R run, "default" for the scene's own size) of a row of
 # RAYSHADE_THRESHOLDS_FILE. IMGDIFF_ARGS passes further imgdiff options, e.g. stricter
-# single-metric thresholds (--max 0.004) for self-regression; they override the table's.
+# single-metric thresholds (--max 0.004), which override the table's, or the full-resolution
+# self-regression criterion --pixels 1 0.001 (at most 0.1% of pixels off by more than 1/255).
 # On a failed comparison the reference is copied beside the output as <name>.ref.png, so
 # output, reference and heat map can be reviewed together.
 #

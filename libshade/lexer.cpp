@@ -9,7 +9,8 @@ namespace rs {
 namespace {
 
 // Spec §1.3: every keyword, mapped to its canonical spelling, plus `implicit`, our
-// Implicit Patches primitive (libray/libobj/implicit/README.md). Synonyms map to the spelling
+// Implicit Patches primitive (libray/libobj/implicit/README.md), and `patches`, its debug
+// texture (libray/libtext/patches_texture.h). Synonyms map to the spelling
 // the grammar uses; `samples` (the quick reference's spelling) is accepted for `sample`.
 const std::unordered_map<std::string, std::string>& KeywordTable() {
     static const std::unordered_map<std::string, std::string> table = [] {
@@ -23,7 +24,7 @@ const std::unordered_map<std::string, std::string>& KeywordTable() {
             "eyesep",      "fbm",         "fbmbump",      "filter",    "focaldist",  "fog",
             "fogdeck",     "fov",         "framelength",  "frames",    "gauss",      "gloss",
             "grid",        "heightfield", "image",        "implicit",  "index",      "intersect",
-            "jitter",
+            "jitter",      "patches",
             "light",       "list",        "lookp",        "map",       "marble",     "maxdepth",
             "mist",        "mount",       "name",         "nojitter",  "noshadow",   "object",
             "outfile",     "planar",      "plane",        "point",     "poly",       "print",

@@ -10,6 +10,7 @@
 #include "libtext/image_texture.h"
 #include "libtext/marble.h"
 #include "libtext/mount.h"
+#include "libtext/patches_texture.h"
 #include "libtext/sky.h"
 #include "libtext/stripe.h"
 #include "libtext/windy.h"
@@ -38,6 +39,7 @@ const std::vector<TextureEntry>& TextureRegistry() {
         {"image", &ImageTexture::Create,
          "texture image FILE [component C] [tile U V] [textsurf SURFACE] [range HI LO] "
          "[smooth] [map MAPPING]"},
+        {"patches", &PatchesTexture::Create, "texture patches"},
     };
     return entries;
 }

@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <cmath>
 #include <optional>
 
 #include "libcommon/error.h"
@@ -13,20 +14,24 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: imgdiff [--mean M] [--max X] [--frac F] [--bright B] [--diff out.png]\n"
-    "               [--thresholds FILE SCENE RES] ours.png reference.png\n"
+    "               [--thresholds FILE SCENE RES] [--pixels STEPS P] ours.png reference.png\n"
     "Compares two images after a 4x4 box downsample (channel values in [0,1]) and passes\n"
     "when mean abs error < M, max abs error < X, the fraction of pixels whose largest\n"
     "channel difference exceeds 0.03 <= F, and |mean(ours) - mean(ref)| / mean(ref) < B\n"
     "(defaults 0.005 0.15 0.05 0.01). --thresholds takes the row for SCENE at RES (a number\n"
     "or 'default') from a thresholds table, falling back to its 'default any' row; the\n"
     "single-metric options override the table. On failure a heat map of the differences\n"
-    "goes to --diff (default <ours>.diff.png).\n"
+    "goes to --diff (default <ours>.diff.png). --pixels adds a full-resolution test: at most\n"
+    "a fraction P of the pixels may differ by more than STEPS/255 in some channel\n"
+    "(self-regression: --pixels 1 0.001).\n"
     "Exit status: 0 pass, 1 fail, 2 error.\n";
 
 struct Options {
     std::optional<double> mean, max, frac, bright;
     std::string diffPath;
     std::string tableFile, tableScene, tableResolution;
+    std::optional<int> pixelSteps;  // --pixels STEPS P
+    double pixelFraction = 0;
     std::vector<std::string> images;
     bool help = false;
 };
@@ -60,6 +65,16 @@ bool ParseOptions(const std::vector<std::string>& args, Options& options, std::s
             options.tableFile = args[++i];
             options.tableScene = args[++i];
             options.tableResolution = args[++i];
+        } else if (arg == "--pixels") {
+            if (!needs(2)) return false;
+            const std::optional<double> steps = ParseNonNegative(args[++i]);
+            const std::optional<double> fraction = ParseNonNegative(args[++i]);
+            if (!steps || *steps != std::floor(*steps) || *steps > 255 || !fraction) {
+                error = "--pixels needs a whole number of steps in [0, 255] and a fraction >= 0";
+                return false;
+            }
+            options.pixelSteps = static_cast<int>(*steps);
+            options.pixelFraction = *fraction;
         } else if (arg == "-h" || arg == "--help") {
             options.help = true;
         } else if (arg.size() > 1 && arg[0] == '-') {
@@ -129,11 +144,23 @@ int RunImgdiff(const std::vector<std::string>& args, std::ostream& out, std::ost
     }
     const Thresholds& t = limits;
     const DiffMetrics& m = *metrics;
-    const bool pass = WithinThresholds(m, t);
+    bool pass = WithinThresholds(m, t);
     std::string line = oursPath + ": " + Verdict("mean", m.mean, "<", t.mean, m.mean < t.mean) +
                        " " + Verdict("max", m.max, "<", t.max, m.max < t.max) + " " +
                        Verdict("frac", m.frac, "<=", t.frac, m.frac <= t.frac) + " " +
                        Verdict("bright", m.bright, "<", t.bright, m.bright < t.bright);
+    if (options.pixelSteps) {
+        const auto beyond = FractionBeyond(*ours, *ref, *options.pixelSteps, error);
+        if (!beyond) {
+            err << "imgdiff: " << oursPath << " vs " << refPath << ": " << error << "\n";
+            return kImgdiffError;
+        }
+        const bool ok = *beyond <= options.pixelFraction;
+        const std::string name = StringPrintf("pixels>%d/255", *options.pixelSteps);
+        line += ' ';
+        line += Verdict(name.c_str(), *beyond, "<=", options.pixelFraction, ok);
+        pass = pass && ok;
+    }
     if (pass) {
         out << line << ": PASS\n";
         return kImgdiffPass;

@@ -114,6 +114,29 @@ std::optional<DiffMetrics> CompareImages(const Image& ours, const Image& ref, st
     return Measure(a, b, layout.colourChannels);
 }
 
+std::optional<double> FractionBeyond(const Image& ours, const Image& ref, int steps,
+                                     std::string& error) {
+    if (!SameSize(ours, ref, error)) return std::nullopt;
+    const SharedLayout layout = LayoutOf(ours, ref);
+    const UnitImage a = ToUnit(ours, layout.colourChannels, layout.alpha);
+    const UnitImage b = ToUnit(ref, layout.colourChannels, layout.alpha);
+    const size_t pixelCount = static_cast<size_t>(a.width) * a.height;
+    if (pixelCount == 0) return 0.0;
+    // Differences are multiples of 1/255; half a step of margin keeps rounding out of it.
+    const double limit = (steps + 0.5) / 255.0;
+    size_t beyond = 0;
+    for (size_t p = 0; p < pixelCount; ++p) {
+        for (int c = 0; c < a.channels; ++c) {
+            const size_t i = p * a.channels + c;
+            if (std::abs(a.values[i] - b.values[i]) > limit) {
+                ++beyond;
+                break;
+            }
+        }
+    }
+    return static_cast<double>(beyond) / static_cast<double>(pixelCount);
+}
+
 bool WithinThresholds(const DiffMetrics& metrics, const Thresholds& thresholds) {
     return metrics.mean < thresholds.mean && metrics.max < thresholds.max &&
            metrics.frac <= thresholds.frac && metrics.bright < thresholds.bright;

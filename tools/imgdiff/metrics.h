@@ -53,6 +53,13 @@ DiffMetrics Measure(const UnitImage& ours, const UnitImage& ref, int colourChann
 // measured. Fails, with a message, when the sizes differ.
 std::optional<DiffMetrics> CompareImages(const Image& ours, const Image& ref, std::string& error);
 
+// Fraction of full-resolution pixels (no downsampling) whose largest channel difference
+// exceeds `steps` 8-bit steps (steps/255), on the channels the images share as in
+// CompareImages: the self-regression criterion "at most 1/255 difference on 99.9% of pixels"
+// is FractionBeyond(ours, ref, 1) <= 0.001. Fails, with a message, when the sizes differ.
+std::optional<double> FractionBeyond(const Image& ours, const Image& ref, int steps,
+                                     std::string& error);
+
 struct Thresholds {
     double mean = 0.005, max = 0.15, frac = 0.05, bright = 0.01;
 };

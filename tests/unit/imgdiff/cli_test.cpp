@@ -101,6 +101,26 @@ TEST_F(ImgdiffCli, ThresholdTableRowWithOptionsOverridingIt) {
               kImgdiffPass);
 }
 
+TEST_F(ImgdiffCli, PixelsOptionTestsFullResolutionDifferences) {
+    // Difference 10/255 on every pixel: all beyond 9 steps, none beyond 10.
+    const std::string a = Grey("a.png", 110), b = Grey("b.png", 100);
+    const std::vector<std::string> loose = {"--mean", "1", "--max", "1", "--frac", "1",
+                                            "--bright", "1"};
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = loose;
+        args.insert(args.end(), extra.begin(), extra.end());
+        args.push_back(a);
+        args.push_back(b);
+        return Run(args);
+    };
+    EXPECT_EQ(with({"--pixels", "10", "0"}), kImgdiffPass) << out.str() << err.str();
+    EXPECT_EQ(with({"--pixels", "9", "0.999"}), kImgdiffFail) << out.str();
+    EXPECT_NE(out.str().find("pixels>9/255 1.000000"), std::string::npos) << out.str();
+    EXPECT_EQ(with({"--pixels", "9", "1"}), kImgdiffPass);
+    EXPECT_EQ(with({"--pixels", "1.5", "0"}), kImgdiffError);
+    EXPECT_EQ(with({"--pixels", "1"}), kImgdiffError);
+}
+
 TEST_F(ImgdiffCli, ErrorsExitWithTwo) {
     const std::string a = Grey("a.png", 100), b = Grey("b.png", 100);
     const std::string narrow = Grey("narrow.png", 100, 7);

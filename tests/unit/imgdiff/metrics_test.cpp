@@ -102,6 +102,27 @@ TEST(CompareImages, PixelToleranceIsExceededByEightStepsNotSeven) {
     EXPECT_NEAR(m->max, 8.0 / 255, kEps);
 }
 
+TEST(FractionBeyond, CountsFullResolutionPixelsBeyondTheSteps) {
+    // 10×10 RGB; 3 pixels differ by 2 steps in one channel, 4 by exactly 1 step, and one pair
+    // of neighbours by +5 and −5 (which a 4×4 box average would cancel).
+    const Image ours = Filled(10, 10, {100, 100, 100});
+    Image ref = ours;
+    Set(ref, 0, 0, 0, 102);
+    Set(ref, 5, 5, 1, 98);
+    Set(ref, 9, 9, 2, 102);
+    for (int x = 0; x < 4; ++x) Set(ref, x, 2, 1, 101);
+    Set(ref, 0, 1, 2, 105);
+    Set(ref, 1, 1, 2, 95);
+    std::string error;
+    const auto one = FractionBeyond(ours, ref, 1, error);
+    ASSERT_TRUE(one) << error;
+    EXPECT_NEAR(*one, 5.0 / 100, kEps);
+    EXPECT_NEAR(*FractionBeyond(ours, ref, 0, error), 9.0 / 100, kEps);
+    EXPECT_NEAR(*FractionBeyond(ours, ref, 2, error), 2.0 / 100, kEps);
+    EXPECT_NEAR(*FractionBeyond(ours, ref, 5, error), 0.0, kEps);
+    EXPECT_FALSE(FractionBeyond(ours, Filled(10, 9, {100, 100, 100}), 1, error));
+}
+
 TEST(CompareImages, GreyAgainstRgbComparesInRgb) {
     std::string error;
     const auto m = CompareImages(Filled(1, 1, {10}), Filled(1, 1, {10, 10, 40}), error);

@@ -62,7 +62,8 @@ TEST_F(TextureRegistryTest, OneRowPerKeyword) {
     }
     std::set<std::string> expected = {"checker", "blotch", "bump",  "marble", "fbm",
                                       "fbmbump", "wood",   "gloss", "cloud",  "sky",
-                                      "stripe",  "windy",  "mount", "image"};
+                                      "stripe",  "windy",  "mount", "image",
+                                      "patches"};
     EXPECT_EQ(keywords, expected);
 }
 
@@ -88,6 +89,7 @@ TEST_F(TextureRegistryTest, EveryFactoryReadsItsArguments) {
                                "1", "1", "map", "planar", "0", "0", "0", "0", "1", "0", "1",
                                "0", "0"}));
     EXPECT_TRUE(Make("image", {grey_, "textsurf", "red", "map", "uv"}));
+    EXPECT_TRUE(Make("patches", {}));
 }
 
 TEST_F(TextureRegistryTest, FactoriesStopAtTheNextItem) {
