@@ -6,13 +6,7 @@ namespace rs {
 
 bool AreaLightCell::Sample(const Vec3& x, int, int, Rng& rng, LightSample& out) const {
     double su = rng.Uniform(), sv = rng.Uniform();
-    Vec3 d = corner_ + edgeU_ * su + edgeV_ * sv - x;
-    double dist = Length(d);
-    if (!(dist > 0)) return false;
-    out.shadeDir = out.shadowDir = d / dist;
-    out.shadowDist = dist;
-    out.color = intensity;
-    return true;
+    return SampleFromPoint(x, corner_ + edgeU_ * su + edgeV_ * sv, intensity, out);
 }
 
 LightList CreateAreaLight(ArgReader& args, const Color& intensity) {

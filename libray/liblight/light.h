@@ -14,6 +14,18 @@ struct LightSample {
     Color color;         // intensity arriving before occlusion (spot cone applied)
 };
 
+// Fills `out` for light of colour `color` arriving at `x` from the point `source` (same
+// direction for shading and shadow ray). False when x is at the source.
+inline bool SampleFromPoint(const Vec3& x, const Vec3& source, const Color& color, LightSample& out) {
+    Vec3 d = source - x;
+    double dist = Length(d);
+    if (!(dist > 0)) return false;
+    out.shadeDir = out.shadowDir = d / dist;
+    out.shadowDist = dist;
+    out.color = color;
+    return true;
+}
+
 class Light {
   public:
     virtual ~Light() = default;

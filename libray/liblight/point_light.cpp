@@ -5,13 +5,7 @@
 namespace rs {
 
 bool PointLight::Sample(const Vec3& x, int, int, Rng&, LightSample& out) const {
-    Vec3 d = position_ - x;
-    double dist = Length(d);
-    if (!(dist > 0)) return false;
-    out.shadeDir = out.shadowDir = d / dist;
-    out.shadowDist = dist;
-    out.color = intensity;
-    return true;
+    return SampleFromPoint(x, position_, intensity, out);
 }
 
 LightList CreatePointLight(ArgReader& args, const Color& intensity) {

@@ -15,11 +15,7 @@ SpotLight::SpotLight(const Color& i, const Vec3& from, const Vec3& at, double co
 }
 
 bool SpotLight::Sample(const Vec3& x, int, int, Rng&, LightSample& out) const {
-    Vec3 d = position_ - x;
-    double dist = Length(d);
-    if (!(dist > 0)) return false;
-    out.shadeDir = out.shadowDir = d / dist;
-    out.shadowDist = dist;
+    if (!SampleFromPoint(x, position_, intensity, out)) return false;
 
     double cosPhi = -Dot(out.shadeDir, axis_);
     if (cosPhi <= 0) return false;

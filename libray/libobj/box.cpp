@@ -48,17 +48,7 @@ bool Box::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit)
         if (t1 < tFar) tFar = t1;
     }
     if (tNear > tFar) return false;
-    if (tNear > tMin && tNear < tMax) {
-        hit.t = tNear;
-        hit.part = 0;
-        return true;
-    }
-    if (tFar > tMin && tFar < tMax) {
-        hit.t = tFar;
-        hit.part = 1;
-        return true;
-    }
-    return false;
+    return AcceptNearerCrossing(tNear, tFar, tMin, tMax, hit);
 }
 
 SurfaceNormals Box::Normal(const Vec3& p, const PrimitiveHit&) const {

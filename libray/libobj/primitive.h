@@ -40,6 +40,24 @@ struct SurfaceUV {
     Vec3 dpdv{0, 1, 0};
 };
 
+// For solids whose surface a line crosses at most twice (entry tNear ≤ exit tFar): accepts
+// the nearer crossing inside (tMin, tMax), recording part 0 for the entry and 1 for the exit
+// (what EntersFromHit reads back).
+inline bool AcceptNearerCrossing(double tNear, double tFar, double tMin, double tMax,
+                                 PrimitiveHit& hit) {
+    if (tNear > tMin && tNear < tMax) {
+        hit.t = tNear;
+        hit.part = 0;
+        return true;
+    }
+    if (tFar > tMin && tFar < tMax) {
+        hit.t = tFar;
+        hit.part = 1;
+        return true;
+    }
+    return false;
+}
+
 class Primitive {
   public:
     virtual ~Primitive() = default;

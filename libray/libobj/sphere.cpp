@@ -46,17 +46,7 @@ bool Sphere::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& h
     const double q = -b - std::copysign(std::sqrt(a * reduced), b);
     double tNear = q / a, tFar = q != 0 ? c / q : tNear;
     if (tNear > tFar) std::swap(tNear, tFar);
-    if (tNear > tMin && tNear < tMax) {
-        hit.t = tNear;
-        hit.part = 0;
-        return true;
-    }
-    if (tFar > tMin && tFar < tMax) {
-        hit.t = tFar;
-        hit.part = 1;
-        return true;
-    }
-    return false;
+    return AcceptNearerCrossing(tNear, tFar, tMin, tMax, hit);
 }
 
 SurfaceNormals Sphere::Normal(const Vec3& p, const PrimitiveHit&) const {
