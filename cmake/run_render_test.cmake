@@ -1,7 +1,8 @@
 # Driver for one render regression test, run as
 #     cmake -DRAYSHADE=... -DIMGDIFF=... -DSCENE=... -DREFERENCE=... -DOUTPUT=... -DWORKDIR=...
 #           [-DRENDER_ARGS=a;b;...] [-DTHRESHOLDS_FILE=... -DTHRESHOLDS_SCENE=...
-#           -DTHRESHOLDS_RESOLUTION=...] [-DUPDATE_REFERENCE=ON] -P run_render_test.cmake
+#           -DTHRESHOLDS_RESOLUTION=...] [-DIMGDIFF_ARGS=a;b;...] [-DUPDATE_REFERENCE=ON]
+#           -P run_render_test.cmake
 # (see RenderTest.cmake). Any failure ends the script with FATAL_ERROR, i.e. a non-zero exit.
 cmake_minimum_required(VERSION 3.20)
 
@@ -44,7 +45,7 @@ if(NOT "${THRESHOLDS_SCENE}" STREQUAL "")
   set(thresholdOptions --thresholds "${THRESHOLDS_FILE}" "${THRESHOLDS_SCENE}"
                        "${THRESHOLDS_RESOLUTION}")
 endif()
-execute_process(COMMAND "${IMGDIFF}" ${thresholdOptions} --diff "${diffImage}"
+execute_process(COMMAND "${IMGDIFF}" ${thresholdOptions} ${IMGDIFF_ARGS} --diff "${diffImage}"
                         "${OUTPUT}" "${REFERENCE}"
                 RESULT_VARIABLE diffStatus)
 if(NOT diffStatus EQUAL 0)

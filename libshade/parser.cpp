@@ -144,6 +144,7 @@ Scene Parser::Parse() {
     auto world = std::make_shared<ListAggregate>();
     for (auto& child : worldChildren_) world->AddChild(child);
     scene_.world = Object::MakeAggregate(world);
+    scene_.world->name = "World";
     if (scene_.world->PrimitiveCount() == 0)
         Report(Severity::Abort, SourceLocation{}, "Nothing to be rendered");
     return std::move(scene_);
@@ -179,7 +180,10 @@ bool Parser::ParseScopedItem(std::vector<std::shared_ptr<Object>>& into) {
         TokenArgReader args = Args(kw, "name objname object [transforms] [textures]");
         std::string name = args.ReadName();
         std::shared_ptr<Object> node = ParseInstance();
-        if (node) node->name = name;
+        if (node) {
+            node->name = name;
+            scene_.namedObjects.push_back(node);
+        }
         objects_[name] = node;  // a later definition shadows an earlier one silently
     } else if (IsPrimitiveKeyword(k) || IsAggregateKeyword(k) || k == "object") {
         if (std::shared_ptr<Object> node = ParseInstance()) into.push_back(std::move(node));

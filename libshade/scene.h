@@ -97,6 +97,8 @@ struct Scene {
     std::vector<AtmosphereEffect> atmosphere;
     // The World: an implicit list of every top-level instance.
     std::shared_ptr<Object> world;
+    // Objects defined with `name`, in order of definition (for the verbose report).
+    std::vector<std::shared_ptr<Object>> namedObjects;
 };
 
 }  // namespace rs

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "libcommon/error.h"
@@ -206,6 +207,17 @@ int Run(int argc, char** argv) {
         double frameTime = o.startTime + f * o.frameLength;
         rs::SetCurrentFrame(f);
         scene.world->PrepareFrame(frameTime, o.shutter);
+        if (o.verbose) {
+            if (f == firstFrame) {
+                for (const auto& named : scene.namedObjects) {
+                    named->PrepareFrame(frameTime, o.shutter);  // also those never instanced
+                    rs::WriteObjectSummary(gStats, *named);
+                }
+                unsigned hw = std::thread::hardware_concurrency();
+                rs::WriteOptionsSummary(gStats, scene, o.threads > 0 ? o.threads : static_cast<int>(hw ? hw : 1));
+            }
+            rs::WriteObjectSummary(gStats, *scene.world);
+        }
         if (f == firstFrame) {
             times.preprocessSeconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -88,9 +88,8 @@ Color Renderer::SampleCell(int absX, int absY, int cell, Rng& rng, double& alpha
     }
     double sx = absX + pattern_.CellOffsetX(cell) + jx * pattern_.CellSize();
     double sy = absY + pattern_.CellOffsetY(cell) + jy * pattern_.CellSize();
-    double time = frameTime_;
-    if (options_.shutter > 0)
-        time += options_.shutter / (n * n) * (sampleNumber + (options_.jitter ? rng.Uniform() : 0));
+    const double xi = options_.shutter > 0 && options_.jitter ? rng.Uniform() : 0;
+    const double time = ShutterTime(frameTime_, options_.shutter, n, sampleNumber, xi);
     double lx = 0, ly = 0;
     if (camera_.HasAperture()) SquareSample(sampleNumber, n, rng, lx, ly);
     SampleState state{sampleNumber, n, &rng};

@@ -15,6 +15,40 @@ double Percent(uint64_t part, uint64_t whole) {
 
 }  // namespace
 
+void WriteObjectSummary(std::FILE* out, const Object& object) {
+    if (object.name.empty())
+        std::fprintf(out, "%s:\n", object.TypeName().c_str());
+    else
+        std::fprintf(out, "%s \"%s\":\n", object.TypeName().c_str(), object.name.c_str());
+    if (object.IsBounded()) {
+        const Bounds3& b = object.BoundsInParent();
+        std::fprintf(out, "\tX: %f to %f\n\tY: %f to %f\n\tZ: %f to %f\n", b.lo.x, b.hi.x, b.lo.y,
+                     b.hi.y, b.lo.z, b.hi.z);
+    } else {
+        std::fprintf(out, "\tunbounded\n");
+    }
+    long n = object.PrimitiveCount();
+    std::fprintf(out, "\t%ld primitive%s\n", n, n == 1 ? "" : "s");
+}
+
+void WriteOptionsSummary(std::FILE* out, const Scene& scene, int threads) {
+    const RenderOptions& o = scene.options;
+    std::fprintf(out, "Rendering frame%s %d", o.frames > 1 ? "s" : "", o.startFrame);
+    if (o.frames > 1) std::fprintf(out, " to %d", o.startFrame + o.frames - 1);
+    std::fprintf(out, "\nScreen resolution: %d x %d\n", o.xres, o.yres);
+    std::fprintf(out, "%s sampling, %d max sample%s per pixel side, %s filter\n",
+                 o.jitter ? "Jittered" : "Unjittered", o.samples, o.samples == 1 ? "" : "s",
+                 o.filter == FilterKind::Gauss ? "gaussian" : "box");
+    std::fprintf(out, "Contrast threshold: %f %f %f\n", o.contrast.r, o.contrast.g, o.contrast.b);
+    std::fprintf(out, "Maximum ray depth: %d.  Cutoff threshold: %f %f %f\n", o.maxDepth, o.cutoff.r,
+                 o.cutoff.g, o.cutoff.b);
+    if (o.eyeSepSide != 0) std::fprintf(out, "Rendering %s eye view\n", o.eyeSepSide < 0 ? "left" : "right");
+    std::fprintf(out, "%s\n", o.noShadows ? "No shadows"
+                                          : (o.shadowTransparency ? "Shadows through transparent objects"
+                                                                  : "Opaque shadows"));
+    std::fprintf(out, "Threads: %d\n", threads);
+}
+
 void WriteStatistics(std::FILE* out, const RunTimes& times) {
     std::map<std::string, uint64_t> c;
     std::vector<CounterValue> all = StatsSnapshot();

@@ -62,4 +62,9 @@ void SquareSample(int m, int n, Rng& rng, double& px, double& py) {
     py = -1 + (m / n) * cell + rng.Uniform() * cell;
 }
 
+double ShutterTime(double frameTime, double shutter, int n, int m, double xi) {
+    if (shutter <= 0) return frameTime;
+    return frameTime + shutter / (n * n) * (m + xi);
+}
+
 }  // namespace rs

@@ -36,4 +36,10 @@ class SamplingPattern {
 // inside cell m (always random, even without jitter); a plain uniform point when m < 0.
 void SquareSample(int m, int n, Rng& rng, double& px, double& py);
 
+// The ray time of sample number m (0 ≤ m < n²) in a frame whose shutter opens at
+// `frameTime` (spec §3.3): `frameTime` when shutter ≤ 0, else
+// frameTime + (shutter/n²)·(m + xi) with xi ∈ [0, 1) (0 without jitter), so sample m lies in
+// stratum m of [frameTime, frameTime + shutter).
+double ShutterTime(double frameTime, double shutter, int n, int m, double xi);
+
 }  // namespace rs

@@ -6,6 +6,7 @@
 #include "libcommon/constants.h"
 #include "libcommon/stats.h"
 #include "libobj/object.h"
+#include "libtext/noise.h"
 #include "libtext/texture.h"
 
 namespace rs {
@@ -281,10 +282,12 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
 
 Color Tracer::Atmosphere(const Ray& ray, double dist, const Color& in) const {
     Color c = in;
-    // Effects apply in reverse order of listing.
+    // Effects apply in reverse order of listing. Each one blends towards its colour by
+    // att(d, T) per channel (spec §3.8) over an effective distance d.
     for (auto it = scene_.atmosphere.rbegin(); it != scene_.atmosphere.rend(); ++it) {
         const AtmosphereEffect& e = *it;
         double effectiveDist = dist;
+        Color halfDist = e.thinness;
         if (e.kind == AtmosphereEffect::Kind::Mist) {
             // Mean density along the ray of exp(zero − h/scale) between both end heights.
             double oz = ray.origin.z, pz = ray.At(dist).z;
@@ -294,11 +297,29 @@ Color Tracer::Atmosphere(const Ray& ray, double dist, const Color& in) const {
                              : std::exp(e.zero - pz / e.scale);
             effectiveDist = dist * rho;
         } else if (e.kind == AtmosphereEffect::Kind::FogDeck) {
-            continue;  // fogdeck is inert in the original (spec §3.8); part 2 implements it
+            // The deck is the plane z = altitude; a ray crossing it in (ε, dist] is fogged
+            // over the rest of its length, dist − tCross, with the density ρ found at the
+            // crossing. This is the original's intent; its parallelism test used integer
+            // abs() and skipped nearly every ray.
+            if (std::fabs(ray.dir.z) < kEpsilon) continue;
+            double tCross = (e.altitude - ray.origin.z) / ray.dir.z;
+            if (tCross < kEpsilon || tCross > dist) continue;
+            Vec3 p = MulComponents(ray.At(tCross), e.deckScale);
+            // ρ = offset + chaoscale·Σ_{k<octaves} 2^−k |Noise(2^k p)|.
+            double sum = 0, weight = 1;
+            for (int k = 0; k < e.octaves; ++k) {
+                sum += weight * std::fabs(Noise(p));
+                weight *= 0.5;
+                p *= 2.0;
+            }
+            double rho = e.offset + e.chaoScale * sum;
+            if (rho < kEpsilon) continue;  // thinness T/ρ is infinite: no fog
+            halfDist = e.thinness * (1 / rho);
+            effectiveDist = dist - tCross;
         }
-        double ar = Attenuation(effectiveDist, e.thinness.r);
-        double ag = Attenuation(effectiveDist, e.thinness.g);
-        double ab = Attenuation(effectiveDist, e.thinness.b);
+        double ar = Attenuation(effectiveDist, halfDist.r);
+        double ag = Attenuation(effectiveDist, halfDist.g);
+        double ab = Attenuation(effectiveDist, halfDist.b);
         c = {ar * c.r + (1 - ar) * e.color.r, ag * c.g + (1 - ag) * e.color.g,
              ab * c.b + (1 - ab) * e.color.b};
     }

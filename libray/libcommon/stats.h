@@ -50,8 +50,9 @@ void ResetStats();
 // The pair of counters of a primitive type: "<Type> tests" and "<Type> hits". The report
 // prints one line per type that was tested, in the spec's order (§5).
 struct IntersectionCounters {
-    explicit IntersectionCounters(const std::string& typeName)
-        : tests(RegisterCounter(typeName + " tests")), hits(RegisterCounter(typeName + " hits")) {}
+    explicit IntersectionCounters(const std::string& type)
+        : typeName(type), tests(RegisterCounter(type + " tests")), hits(RegisterCounter(type + " hits")) {}
+    std::string typeName;  // "Sphere", "Box", ... (also used by the verbose report)
     CounterId tests, hits;
 };
 

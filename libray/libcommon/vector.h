@@ -14,8 +14,10 @@ struct Vec3 {
     constexpr Vec3() = default;
     constexpr Vec3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
 
-    constexpr double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-    double& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+    // Component i (0, 1, 2) through a member-pointer table: one indexed load, no branches,
+    // which matters in the per-axis loops of box and grid traversal.
+    constexpr double operator[](int i) const { return this->*kAxes[i]; }
+    double& operator[](int i) { return this->*kAxes[i]; }
 
     constexpr Vec3 operator-() const { return {-x, -y, -z}; }
     constexpr Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
@@ -26,6 +28,9 @@ struct Vec3 {
     Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
     Vec3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
     constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
+
+  private:
+    static constexpr double Vec3::*kAxes[3] = {&Vec3::x, &Vec3::y, &Vec3::z};
 };
 
 constexpr Vec3 operator*(double s, const Vec3& v) { return v * s; }

@@ -128,6 +128,15 @@ void Object::PrepareFrame(double frameTime, double shutter) {
     boundsInParent_ = b.Padded(kEpsilon);
 }
 
+std::string Object::TypeName() const {
+    switch (kind_) {
+        case Kind::Primitive: return counters_->typeName;
+        case Kind::Aggregate: return aggregate_->TypeName();
+        case Kind::Instance: return "instance";
+    }
+    return "object";
+}
+
 long Object::PrimitiveCount() const {
     switch (kind_) {
         case Kind::Primitive: return 1;

@@ -56,6 +56,9 @@ class Object {
 
     // Number of primitives below this node (instances count their target's).
     long PrimitiveCount() const;
+    // What the node is, for reports: the primitive's type ("Sphere"), the aggregate's
+    // keyword ("grid"), or "instance".
+    std::string TypeName() const;
 
   private:
     explicit Object(Kind k) : kind_(k) {}

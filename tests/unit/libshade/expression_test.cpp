@@ -111,6 +111,50 @@ TEST(Expression, TimeVaryingEvaluation) {
     EXPECT_DOUBLE_EQ(f->Evaluate(0), 0.5);
 }
 
+TEST(Expression, LinearAtBeforeAfterAndOnItsEnds) {
+    // linear(t0,v0,t1,v1): v0 up to t0, v1 from t1 on, the straight line in between
+    // (spec §1.4). Here from (2, 10) to (6, −2): slope −3.
+    EXPECT_DOUBLE_EQ(LinearAt(-100, 2, 10, 6, -2), 10);
+    EXPECT_DOUBLE_EQ(LinearAt(2, 2, 10, 6, -2), 10);
+    EXPECT_DOUBLE_EQ(LinearAt(3, 2, 10, 6, -2), 7);
+    EXPECT_DOUBLE_EQ(LinearAt(5.5, 2, 10, 6, -2), -0.5);
+    EXPECT_DOUBLE_EQ(LinearAt(6, 2, 10, 6, -2), -2);
+    EXPECT_DOUBLE_EQ(LinearAt(1e9, 2, 10, 6, -2), -2);
+}
+
+TEST(Expression, LinearWithEqualTimesIsAStep) {
+    // t0 ≈ t1 (within ε): v0 before and at the step, v1 after it.
+    EXPECT_DOUBLE_EQ(LinearAt(4.9, 5, 1, 5, 3), 1);
+    EXPECT_DOUBLE_EQ(LinearAt(5, 5, 1, 5, 3), 1);
+    EXPECT_DOUBLE_EQ(LinearAt(5.1, 5, 1, 5, 3), 3);
+    EXPECT_DOUBLE_EQ(LinearAt(5.000001, 5, 1, 5.000002, 3), 1);  // within ε of t0
+    SymbolTable symbols;
+    ExprPtr step = Parse("(linear(5, 1, 5, 3))", symbols);
+    EXPECT_DOUBLE_EQ(step->Evaluate(4), 1);
+    EXPECT_DOUBLE_EQ(step->Evaluate(6), 3);
+}
+
+TEST(Expression, LinearArgumentsMayThemselvesVaryInTime) {
+    // linear(0, time, 10, 0): at time t the value is t·(1 − t/10) for t in [0, 10].
+    SymbolTable symbols;
+    ExprPtr e = Parse("(linear(0, time, 10, 0))", symbols);
+    EXPECT_DOUBLE_EQ(e->Evaluate(5), 2.5);
+    EXPECT_DOUBLE_EQ(e->Evaluate(2), 1.6);
+    EXPECT_DOUBLE_EQ(e->Evaluate(12), 0);
+}
+
+TEST(Expression, FrameIsConstantWithinAFrame) {
+    // `frame` is the frame number whatever the ray time; `time` follows the ray.
+    SymbolTable symbols;
+    ExprPtr e = Parse("(frame * 100 + time)", symbols);
+    SetCurrentFrame(4);
+    EXPECT_DOUBLE_EQ(e->Evaluate(4), 404);
+    EXPECT_DOUBLE_EQ(e->Evaluate(4.75), 404.75);
+    SetCurrentFrame(5);
+    EXPECT_DOUBLE_EQ(e->Evaluate(4.75), 504.75);
+    SetCurrentFrame(0);
+}
+
 TEST(Expression, CoinSceneIdiom) {
     SymbolTable symbols;
     symbols.Define("length", Parse("30", symbols));

@@ -103,5 +103,56 @@ TEST(Window, OutsideScreenIsAnError) {
     EXPECT_THROW(ComputeWindow(o), FatalError);
 }
 
+// ---- Stereo (spec §3.2): the eye moves by ∓eyesep/2 along r̂ and aims at the same point ----
+
+TEST(Stereo, EyesMoveHalfTheSeparationAlongTheRightVector) {
+    // Default view: eye (0,−10,0) looking at the origin with z up, so r̂ = +x.
+    Camera cam;
+    cam.eyeSep = 2;
+    RenderOptions o;
+    o.xres = o.yres = 64;
+    for (int side : {-1, 1}) {
+        o.eyeSepSide = side;
+        CameraSetup setup(cam, o);
+        Ray centre = setup.EyeRay(32, 32, 0, 0, 0);
+        EXPECT_NEAR(centre.origin.x, side * 1.0, 1e-12);  // left −1, right +1
+        EXPECT_NEAR(centre.origin.y, -10, 1e-12);
+        EXPECT_NEAR(centre.origin.z, 0, 1e-12);
+        // Toe-in: the screen centre still looks at the look point.
+        Vec3 toLook = Normalize(Vec3{0, 0, 0} - centre.origin);
+        EXPECT_NEAR(Dot(centre.dir, toLook), 1, 1e-12);
+    }
+}
+
+TEST(Stereo, SeparationIsMeasuredAcrossAnObliqueView) {
+    // Looking from (4,4,1) at the origin: r̂ = normalize(ĝ × up) is horizontal and
+    // perpendicular to the view.
+    Camera cam;
+    cam.eye = {4, 4, 1};
+    cam.lookAt = {0, 0, 0};
+    cam.eyeSep = 0.5;
+    RenderOptions o;
+    o.xres = o.yres = 10;
+    o.eyeSepSide = -1;
+    Ray left = CameraSetup(cam, o).EyeRay(5, 5, 0, 0, 0);
+    o.eyeSepSide = 1;
+    Ray right = CameraSetup(cam, o).EyeRay(5, 5, 0, 0, 0);
+    Vec3 between = right.origin - left.origin;
+    EXPECT_NEAR(Length(between), 0.5, 1e-12);
+    EXPECT_NEAR(between.z, 0, 1e-12);                        // horizontal (up is z)
+    EXPECT_NEAR(Dot(between, Vec3{-4, -4, -1}), 0, 1e-12);   // across the view
+    // ĝ × up for ĝ ∝ (−4,−4,−1), up = z: ∝ (−4, 4, 0); the right eye is on that side.
+    EXPECT_GT(Dot(between, Vec3{-1, 1, 0}), 0);
+    Vec3 mid = (left.origin + right.origin) * 0.5;  // the mono eye is halfway
+    EXPECT_NEAR(Length(mid - cam.eye), 0, 1e-12);
+}
+
+TEST(Stereo, NeedsAnEyeSeparation) {
+    Camera cam;  // eyeSep unset
+    RenderOptions o;
+    o.eyeSepSide = 1;
+    EXPECT_THROW(CameraSetup(cam, o).HasAperture(), FatalError);
+}
+
 }  // namespace
 }  // namespace rs
