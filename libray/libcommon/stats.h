@@ -29,6 +29,13 @@ inline void Count(CounterId id, uint64_t n = 1) {
     counters[id] += n;
 }
 
+// This thread's count of a counter so far (0 before the thread's first count). Callers
+// take differences around a piece of work to attribute it (per ray, per object).
+inline uint64_t ThreadCount(CounterId id) {
+    const uint64_t* counters = detail::threadCounters;
+    return counters ? counters[id] : 0;
+}
+
 struct CounterValue {
     std::string name;
     uint64_t value;

@@ -32,6 +32,7 @@ class Object {
     Primitive* primitive() { return primitive_.get(); }
     const Aggregate* aggregate() const { return aggregate_.get(); }
     const Object* instanceOf() const { return instanceOf_.get(); }
+    Object* instanceOf() { return instanceOf_.get(); }
 
     std::string name;  // the `name` it was defined under, for reports; may be empty
     TransformList parentFromObject;

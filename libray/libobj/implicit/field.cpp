@@ -8,20 +8,15 @@
 
 namespace rs {
 
-namespace {
+FieldCounters::FieldCounters()
+    : values(RegisterCounter("Implicit field evaluations")),
+      gradients(RegisterCounter("Implicit gradient evaluations")),
+      bounds(RegisterCounter("Implicit bound evaluations")) {}
 
-struct FieldCounters {
-    CounterId values = RegisterCounter("Implicit field evaluations");
-    CounterId gradients = RegisterCounter("Implicit gradient evaluations");
-    CounterId bounds = RegisterCounter("Implicit bound evaluations");
-};
-
-const FieldCounters& Counters() {
+const FieldCounters& FieldCounterIds() {
     static const FieldCounters counters;
     return counters;
 }
-
-}  // namespace
 
 Bounds3 TermSupportBounds(const FieldTerm& term) {
     return SkeletonBounds(term.skeleton).Padded(term.kernel.Radius());
@@ -33,7 +28,7 @@ double Field::TermValue(int i, const Vec3& p) const {
 }
 
 double Field::Value(const Vec3& p) const {
-    Count(Counters().values);
+    Count(FieldCounterIds().values);
     double sum = 0;
     for (const FieldTerm& t : terms_) {
         sum += t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
@@ -42,7 +37,7 @@ double Field::Value(const Vec3& p) const {
 }
 
 Vec3 Field::Gradient(const Vec3& p) const {
-    Count(Counters().gradients);
+    Count(FieldCounterIds().gradients);
     Vec3 g;
     for (const FieldTerm& t : terms_) {
         Vec3 closest;
@@ -54,7 +49,7 @@ Vec3 Field::Gradient(const Vec3& p) const {
 }
 
 FieldBound Field::Bound(const Bounds3& box) const {
-    Count(Counters().bounds);
+    Count(FieldCounterIds().bounds);
     FieldBound fb;
     fb.minDistance = std::numeric_limits<double>::infinity();
     for (const FieldTerm& t : terms_) {

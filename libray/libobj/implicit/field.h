@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "libcommon/stats.h"
 #include "libobj/implicit/kernel.h"
 #include "libobj/implicit/skeleton.h"
 
@@ -65,6 +66,14 @@ class Field {
   private:
     std::vector<FieldTerm> terms_;
 };
+
+// The statistics counters of every Field (libcommon/stats.h), so callers can attribute
+// evaluations to an object or a ray by differences of ThreadCount.
+struct FieldCounters {
+    FieldCounters();
+    CounterId values, gradients, bounds;  // Value, Gradient and Bound calls
+};
+const FieldCounters& FieldCounterIds();
 
 // The box of the support {d < R} of one term.
 Bounds3 TermSupportBounds(const FieldTerm& term);

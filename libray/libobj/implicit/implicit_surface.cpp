@@ -1,11 +1,14 @@
 #include "libobj/implicit/implicit_surface.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <string>
 
 #include "libcommon/error.h"
+#include "libcommon/stats.h"
 
 namespace rs {
 
@@ -134,14 +137,105 @@ bool PeekStatement(ArgReader& args) {
     return args.PeekNumber();
 }
 
+// Settings of a method, keeping the declared depth, Dratio and tolerance of `declared`.
+OctreeSettings MethodSettings(bool singleOctree, const OctreeSettings& declared,
+                              double patchesDRatio) {
+    OctreeSettings s = singleOctree ? OctreeSettings::Kb89() : OctreeSettings{};
+    s.maxDepth = declared.maxDepth;
+    if (!singleOctree) s.dRatio = patchesDRatio;
+    s.tolerance = declared.tolerance;
+    s.minWidth = declared.minWidth;
+    return s;
+}
+
+constexpr const char kCounterPrefix[] = "Implicit ";
+constexpr const char kOctreeCounterPrefix[] = "Implicit octree ";
+
+bool StartsWith(const std::string& s, const char* prefix) {
+    return s.compare(0, std::char_traits<char>::length(prefix), prefix) == 0;
+}
+
 }  // namespace
+
+bool ParseImplicitMethod(const std::string& word, ImplicitMethod& method) {
+    if (word == "patches") {
+        method = ImplicitMethod::Patches;
+    } else if (word == "kb89") {
+        method = ImplicitMethod::Kb89;
+    } else {
+        return false;
+    }
+    return true;
+}
+
+const char* ImplicitMethodName(ImplicitMethod method) {
+    return method == ImplicitMethod::Kb89 ? "kb89" : "patches";
+}
 
 ImplicitSurface::ImplicitSurface(std::vector<FieldTerm> terms, ImplicitOptions options)
     : terms_(std::move(terms)), options_(std::move(options)) {
+    static std::atomic<int> created{0};
+    label_ = "Implicit object " + std::to_string(++created);
+    auto reg = [this](const char* what) { return RegisterCounter(label_ + ": " + what); };
+    counters_.tests = reg("intersection calls");
+    counters_.hits = reg("hits");
+    counters_.values = reg("field evaluations");
+    counters_.gradients = reg("gradient evaluations");
+    counters_.bounds = reg("bound evaluations");
+    counters_.riddersIterations = reg("Ridders iterations");
+    counters_.buildMicroseconds = reg("preprocessing time (microseconds)");
+    counters_.cells = reg("octree cells");
+    counters_.memoryBytes = reg("octree memory (bytes)");
     Build();
 }
 
+ImplicitMethod ImplicitSurface::Method() const {
+    return options_.singleOctree ? ImplicitMethod::Kb89 : ImplicitMethod::Patches;
+}
+
+void ImplicitSurface::SetMethod(ImplicitMethod method) {
+    options_.singleOctree = method == ImplicitMethod::Kb89;
+    options_.octree =
+        MethodSettings(options_.singleOctree, options_.octree, options_.patchesDRatio);
+    Build();
+}
+
+std::string ImplicitSurface::PatchName(const PrimitiveHit& hit) const {
+    if (hit.part < 0 || hit.part >= static_cast<int>(patches_.size())) return {};
+    return terms_[patches_[hit.part].Own()].name;
+}
+
+// Builds the patches and octrees and counts the work under this object's label. Builds run
+// outside rendering (parsing, PrepareFrame), so the differences of the process-wide totals
+// around it are this object's; the build counters are found by their common prefix.
 void ImplicitSurface::Build() {
+    const std::vector<CounterValue> before = StatsSnapshot();
+    const auto start = std::chrono::steady_clock::now();
+    BuildStructures();
+    const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
+        std::chrono::steady_clock::now() - start);
+    Count(counters_.buildMicroseconds, static_cast<uint64_t>(micros.count()));
+    uint64_t cells = 0, memory = 0;
+    for (const LGOctree& tree : trees_) {
+        cells += static_cast<uint64_t>(tree.InternalCount() + tree.LeafCount());
+        memory += tree.MemoryBytes();
+    }
+    Count(counters_.cells, cells);
+    Count(counters_.memoryBytes, memory);
+    const std::vector<CounterValue> after = StatsSnapshot();
+    for (size_t i = 0; i < after.size(); ++i) {
+        const std::string& name = after[i].name;
+        uint64_t delta = after[i].value - (i < before.size() ? before[i].value : 0);
+        if (delta == 0 || !StartsWith(name, kCounterPrefix) || StartsWith(name, "Implicit object")) {
+            continue;
+        }
+        std::string what = name.substr(std::char_traits<char>::length(kCounterPrefix));
+        if (!StartsWith(name, kOctreeCounterPrefix)) what = "preprocessing " + what;
+        Count(RegisterCounter(label_ + ": " + what), delta);
+    }
+}
+
+void ImplicitSurface::BuildStructures() {
     whole_ = Field(terms_);
     patches_.clear();
     trees_.clear();
@@ -269,7 +363,7 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             elements.push_back(std::move(e));
         }
     }
-    if (!blends.empty() && !options.singleOctree) {
+    if (!blends.empty()) {
         options.blendMode = BlendMode::Explicit;
         for (const std::vector<std::string>& names : blends) {
             for (const std::string& n : names) {
@@ -281,14 +375,16 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
                 }
             }
         }
-    } else if (!blends.empty()) {
+    }
+    if (!blends.empty() && options.singleOctree) {
         args.Warn("'blend' is ignored with 'method kb89' (one field, everything blends)");
     }
-    options.octree = options.singleOctree ? OctreeSettings::Kb89() : OctreeSettings{};
-    options.octree.maxDepth = maxDepth;
-    if (!options.singleOctree) options.octree.dRatio = dRatio;
-    options.octree.tolerance = tolerance;
-    options.octree.minWidth = tolerance;
+    OctreeSettings declared;
+    declared.maxDepth = maxDepth;
+    declared.tolerance = tolerance;
+    declared.minWidth = tolerance;
+    options.patchesDRatio = dRatio;
+    options.octree = MethodSettings(options.singleOctree, declared, dRatio);
 
     std::vector<FieldTerm> terms(elements.size());
     bool animated = false, anyPositive = false;
@@ -332,6 +428,21 @@ const IntersectionCounters& ImplicitSurface::Counters() const {
 
 bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
                                 PrimitiveHit& hit) const {
+    const FieldCounters& field = FieldCounterIds();
+    const CounterId ridders = RiddersIterationCounter();
+    const uint64_t values = ThreadCount(field.values), gradients = ThreadCount(field.gradients),
+                   bounds = ThreadCount(field.bounds), iterations = ThreadCount(ridders);
+    const bool found = Search(ray, tMin, tMax, hit);
+    Count(counters_.tests);
+    if (found) Count(counters_.hits);
+    Count(counters_.values, ThreadCount(field.values) - values);
+    Count(counters_.gradients, ThreadCount(field.gradients) - gradients);
+    Count(counters_.bounds, ThreadCount(field.bounds) - bounds);
+    Count(counters_.riddersIterations, ThreadCount(ridders) - iterations);
+    return found;
+}
+
+bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const {
     if (options_.singleOctree) {
         std::optional<double> t = trees_.front().FirstRoot(ray, tMin, tMax);
         if (!t) return false;

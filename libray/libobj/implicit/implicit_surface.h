@@ -24,10 +24,18 @@
 //   end
 // Skeleton numbers, weights and field parameters may be animated expressions; the object
 // is then rebuilt by PrepareFrame for each frame (Bounds() describes the current frame).
+//
+// Statistics: each object is labelled "Implicit object N" (N = 1, 2, ... in order of
+// creation) and counts, under "<label>: ...", its preprocessing time (microseconds), octree
+// cells and memory (bytes), each octree heuristic's firings and the evaluations made while
+// building (all summed over rebuilds), and per Intersect call the rays tested, hits, field,
+// gradient and bound evaluations and Ridders iterations. Intersect attributes the module's
+// thread-local counters by differences (libcommon/stats.h ThreadCount): no locks.
 #pragma once
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -37,11 +45,21 @@
 
 namespace rs {
 
+enum class ImplicitMethod { Patches, Kb89 };
+
+// "patches" / "kb89" <-> ImplicitMethod; ParseImplicitMethod returns false on other words.
+bool ParseImplicitMethod(const std::string& word, ImplicitMethod& method);
+const char* ImplicitMethodName(ImplicitMethod method);
+
 struct ImplicitOptions {
     double threshold = 1;
+    // The search and build settings of the current method.
     OctreeSettings octree;
+    // Gascuel's Dratio as declared, restored when the method becomes Patches again.
+    double patchesDRatio = 2;
     // One octree over the plain sum instead of patches (the "kb89" method).
     bool singleOctree = false;
+    // The declared blend graph; used only in patches mode.
     BlendMode blendMode = BlendMode::Automatic;
     std::vector<std::pair<int, int>> blendPairs;  // term indices, Explicit mode only
 };
@@ -68,6 +86,16 @@ class ImplicitSurface final : public Primitive {
     const std::vector<FieldTerm>& Terms() const { return terms_; }
     int PatchCount() const { return static_cast<int>(patches_.size()); }
 
+    ImplicitMethod Method() const;
+    // Switches the intersection method (and the octree heuristics that go with it, keeping
+    // the declared depth, Dratio and tolerance) and rebuilds. Used by command-line overrides.
+    void SetMethod(ImplicitMethod method);
+    // The name of the skeleton owning the patch of a hit, or empty when the hit carries no
+    // patch (kb89: one field for the whole object).
+    std::string PatchName(const PrimitiveHit& hit) const;
+    // "Implicit object N", the prefix of this object's statistics counters.
+    const std::string& Label() const { return label_; }
+
   private:
     // A bounding volume hierarchy over the patch boxes: leaves hold up to kBvhLeafSize
     // consecutive entries of bvhOrder_, inner nodes their two children at left, left + 1.
@@ -79,11 +107,22 @@ class ImplicitSurface final : public Primitive {
     };
     static constexpr int kBvhLeafSize = 2;
 
+    // Per-object statistics counters (see the header comment).
+    struct ObjectCounters {
+        CounterId tests, hits, values, gradients, bounds, riddersIterations;
+        CounterId buildMicroseconds, cells, memoryBytes;
+    };
+
     void Build();
+    void BuildStructures();
+    // Intersect without the per-object counting.
+    bool Search(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const;
     void BuildBvh(int index, int first, int count);
 
     std::vector<FieldTerm> terms_;
     ImplicitOptions options_;
+    std::string label_;
+    ObjectCounters counters_;
     // Rebuilds the terms for a time (set when any parameter is animated).
     std::function<std::vector<FieldTerm>(double)> termsAt_;
     std::vector<Patch> patches_;

@@ -43,6 +43,12 @@ const OctreeCounters& Counters() {
     return counters;
 }
 
+}  // namespace
+
+CounterId RiddersIterationCounter() { return Counters().riddersIterations; }
+
+namespace {
+
 bool Inside(double g) { return g > 0; }
 
 Bounds3 ChildBox(const Bounds3& box, int i) {

@@ -181,6 +181,11 @@ class LGOctree {
     bool degraded_ = false;
 };
 
+// The statistics counter of Ridders iterations (every octree search counts into it), so
+// callers can attribute iterations to an object by differences of ThreadCount. The build
+// counters are all named "Implicit octree ...".
+CounterId RiddersIterationCounter();
+
 // The octree of a patch: its field over its box, with the patch rule for its own term.
 LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings);
 
