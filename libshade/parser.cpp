@@ -575,6 +575,9 @@ std::shared_ptr<Object> Parser::ParsePrimitive() {
         TokenKind after = tokens_.Peek(1).kind;
         surfaceFollows = after == TokenKind::Name || after == TokenKind::Filename;
     }
+    if (surfaceFollows && row->startsArguments && tokens_.Peek().kind == TokenKind::Name &&
+        row->startsArguments(tokens_.Peek().text))
+        surfaceFollows = false;
     if (surfaceFollows) surface = ParseSurface(row->usage);
     TokenArgReader args(*this, kw.location, row->usage);
     std::shared_ptr<Primitive> prim = row->create(args);

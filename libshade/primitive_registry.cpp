@@ -34,7 +34,8 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry() {
         {"implicit", ImplicitSurface::Create,
          "implicit [surface] [threshold T] [tolerance Eps] [octree depth [dratio]] "
          "[method patches|kb89] [field ...] {point|segment|polyline|circle|triangle|box|"
-         "cylinder Name ...} {blend Name Name...} end"},
+         "cylinder Name ...} {blend Name Name...} end",
+         ImplicitSurface::IsBlockWord},
     };
     return rows;
 }

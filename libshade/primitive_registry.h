@@ -16,6 +16,9 @@ struct PrimitiveEntry {
     // handles). Returns nullptr for degenerate input after warning through the reader.
     std::shared_ptr<Primitive> (*create)(ArgReader&);
     const char* usage;  // the argument syntax, for error messages
+    // For primitives whose own arguments may begin with a NAME (a sub-keyword): whether a
+    // NAME right after the keyword starts the arguments rather than naming a surface.
+    bool (*startsArguments)(const std::string& word) = nullptr;
 };
 
 const std::vector<PrimitiveEntry>& PrimitiveRegistry();

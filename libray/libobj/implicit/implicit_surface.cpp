@@ -124,6 +124,20 @@ int SkeletonArity(const std::string& kind) {
 constexpr const char* kSkeletonKinds[] = {"point",    "segment", "polyline", "circle",
                                           "triangle", "box",     "cylinder"};
 
+}  // namespace
+
+bool ImplicitSurface::IsBlockWord(const std::string& word) {
+    static const char* const kStatements[] = {"threshold", "tolerance", "octree", "method",
+                                              "field",     "blend",     "end"};
+    for (const char* w : kStatements)
+        if (word == w) return true;
+    for (const char* w : kSkeletonKinds)
+        if (word == w) return true;
+    return false;
+}
+
+namespace {
+
 // True when the next token starts a statement of the block (or ends it), so open-ended
 // name lists stop there.
 bool PeekStatement(ArgReader& args) {

@@ -72,6 +72,9 @@ class ImplicitSurface final : public Primitive {
     // Reads the block syntax above; fails (located, with usage) on malformed input and
     // invalid kernels, naming the skeleton.
     static std::shared_ptr<Primitive> Create(ArgReader& args);
+    // Whether `word` begins the block's statements (threshold, field, segment, end, ...),
+    // so a parser can tell it from an optional surface name after `implicit`.
+    static bool IsBlockWord(const std::string& word);
 
     const IntersectionCounters& Counters() const override;
     Bounds3 Bounds() const override { return bounds_; }

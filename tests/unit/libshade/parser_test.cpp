@@ -576,3 +576,20 @@ TEST(ExampleScenes, BlobSceneParses) {
 
 }  // namespace
 }  // namespace rs
+
+namespace rs {
+namespace {
+
+TEST(Parser, ImplicitBlockWithOrWithoutSurface) {
+    // A NAME after `implicit` is the surface unless it begins the block's statements.
+    Scene bare = Parse("implicit\n field quadratic 0.5 1.5 1.5\n point a 0 0 0\nend\n");
+    ASSERT_EQ(Top(bare).size(), 1u);
+    EXPECT_EQ(Top(bare)[0]->surface, nullptr);
+    Scene named = Parse("surface skin diffuse 1 0 0\nimplicit skin point a 0 0 0\nend\n");
+    ASSERT_EQ(Top(named).size(), 1u);
+    ASSERT_NE(Top(named)[0]->surface, nullptr);
+    EXPECT_EQ(Top(named)[0]->surface->diffuse, Color(1, 0, 0));
+}
+
+}  // namespace
+}  // namespace rs
