@@ -77,9 +77,13 @@ struct OctreeSettings {
     // "deep enough" of heuristics 3 and 3bis. Measured on 60 blended point skeletons (the
     // research note's §12 parameters, 20 000 rays): min depth 2 / 3 / 4 / 5 gave 131 / 62 /
     // 31 / 20 field plus gradient evaluations per ray for 1 / 4 / 10 / 29 KB of tree per
-    // patch and 1 / 1.5 / 4 / 13 ms of build per patch; 4 is the knee.
+    // patch and 1 / 1.5 / 4 / 13 ms of build per patch. Whole renders decide, though: on the
+    // benchmark's point chains (bench/implicit.sh, 512×512, one thread) min depth 3 against
+    // 4 took 0.52 / 1.04 / 2.59 s against 0.84 / 1.15 / 4.78 s for N = 10 / 100 / 1000,
+    // because every patch pays the build and most pixels see few patches; 3 is also the
+    // paper's setting.
     int maxDepth = 6;
-    int minDepth = 4;
+    int minDepth = 3;
     bool useValueRange = true;
     bool useHeuristic1 = true;
     bool useHeuristic1bis = true;
