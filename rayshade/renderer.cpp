@@ -15,6 +15,9 @@ namespace rs {
 namespace {
 
 const CounterId kSupersampled = RegisterCounter("supersampled pixels");
+// Pixel channels that were NaN or infinite when encoded (written as 0 or 255); printed by -v
+// when non-zero. The numerics tests require it to stay zero.
+const CounterId kNonFinitePixels = RegisterCounter("Non-finite pixel values");
 
 // Purpose tags that separate the random streams of one pixel.
 constexpr uint64_t kSingleSampleStream = 0;
@@ -296,6 +299,8 @@ Image Renderer::Encode(const FrameState& state, bool withAlpha) const {
         uint8_t* out = image.Row(y);
         for (int x = 0; x < w; ++x) {
             const Pixel& px = state.pixels[static_cast<size_t>(y) * w + x];
+            if (!std::isfinite(px.r) || !std::isfinite(px.g) || !std::isfinite(px.b)) [[unlikely]]
+                Count(kNonFinitePixels);
             *out++ = EncodeChannel(px.r, exponent);
             *out++ = EncodeChannel(px.g, exponent);
             *out++ = EncodeChannel(px.b, exponent);
