@@ -46,7 +46,10 @@ RenderWindow ComputeWindow(const RenderOptions& o) {
     w.maxY = static_cast<int>(wy0 + crop[3] * (wy1 - wy0));
     if (w.minX < 0 || w.minY < 0 || w.maxX >= o.xres || w.maxY >= o.yres || w.minX > w.maxX ||
         w.minY > w.maxY)
-        Report(Severity::Abort, {}, "Invalid window specification");
+        Report(Severity::Abort, {},
+               "Invalid window specification: columns %d..%d, rows %d..%d of a %dx%d image "
+               "(need 0 <= min <= max < size)",
+               w.minX, w.maxX, w.minY, w.maxY, o.xres, o.yres);
     return w;
 }
 
