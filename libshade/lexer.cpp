@@ -53,6 +53,14 @@ bool IsNameChar(char c) { return IsLetter(c) || IsDigit(c) || c == '.' || c == '
 bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 char At(const std::string& s, size_t i) { return i < s.size() ? s[i] : '\0'; }
 
+// Input quoted in a message: at most 60 bytes, then "..." (a 1 MB name or number must not
+// become a 1 MB message).
+std::string Abbreviate(const std::string& s) {
+    constexpr size_t kMaxQuoted = 60;
+    if (s.size() <= kMaxQuoted) return s;
+    return s.substr(0, kMaxQuoted) + "...";
+}
+
 }  // namespace
 
 std::string CanonicalKeyword(const std::string& word) {
@@ -70,7 +78,10 @@ std::string Token::Describe() const {
             return "'" + text + "'";
         }
         default:
-            return "'" + text + "'";
+            std::string quoted = "'";  // built by appending: gcc 12's -Wrestrict misreads
+            quoted += Abbreviate(text);  // "'" + std::string&& here
+            quoted += '\'';
+            return quoted;
     }
 }
 
@@ -78,8 +89,9 @@ Lexer::Lexer(std::string text, std::string fileName)
     : text_(std::move(text)), file_(std::move(fileName)) {}
 
 void Lexer::Fail(const char* format, const std::string& arg) const {
-    Report(Severity::Abort, SourceLocation{file_, line_}, format, arg.c_str());
-    throw FatalError(Severity::Abort, arg);  // not reached: Report throws for Abort
+    const std::string quoted = Abbreviate(arg);
+    Report(Severity::Abort, SourceLocation{file_, line_}, format, quoted.c_str());
+    throw FatalError(Severity::Abort, quoted);  // not reached: Report throws for Abort
 }
 
 void Lexer::SkipSpaceAndComments() {
@@ -218,6 +230,9 @@ Token Lexer::Next() {
         if (size_t n = MatchFilename(pos_); n > 0) {
             tok.text = text_.substr(pos_, n);
             pos_ += n;
+            if (n > kMaxNameLength)
+                Fail(StringPrintf("Name longer than %zu characters: %%s", kMaxNameLength).c_str(),
+                     tok.text);
             if (tok.text.find('/') != std::string::npos) {
                 tok.kind = TokenKind::Filename;
             } else if (std::string k = CanonicalKeyword(tok.text); !k.empty()) {

@@ -14,6 +14,10 @@
 
 namespace rs {
 
+// Longest name or file name (a limit, docs/robustness.md): longer ones are a lexical error, so
+// that messages quoting names stay short.
+inline constexpr size_t kMaxNameLength = 4096;
+
 enum class TokenKind {
     End,       // end of input
     Number,    // unsigned literal; `number` holds its value

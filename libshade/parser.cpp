@@ -236,6 +236,10 @@ bool Parser::ParseCameraItem() {
         TokenArgReader args = Args(kw, "screen xres yres");
         int x = args.ReadInt(), y = args.ReadInt();
         if (x < 1 || y < 1) args.Fail("Invalid screen resolution");
+        if (x > kMaxResolutionSide || y > kMaxResolutionSide ||
+            static_cast<long>(x) * y > kMaxResolutionPixels)
+            args.Fail(StringPrintf("Screen resolution %dx%d exceeds the limits (%d per side, %ld "
+                                   "pixels)", x, y, kMaxResolutionSide, kMaxResolutionPixels));
         if (!opt.resolutionSet) opt.xres = x, opt.yres = y;
     } else if (k == "window") {
         Token kw = tokens_.Next();
@@ -265,6 +269,8 @@ bool Parser::ParseOptionItem() {
         TokenArgReader args = Args(kw, "sample n [jitter | nojitter]");
         int n = args.ReadInt();
         if (n < 1) args.Fail("The sample count must be at least 1");
+        if (n > kMaxSamplesPerSide)
+            args.Fail(StringPrintf("The sample count must be at most %d", kMaxSamplesPerSide));
         if (!opt.samplesSet) opt.samples = n;
         if (args.Accept("jitter")) {
             if (!opt.jitterSet) opt.jitter = true;
@@ -296,7 +302,12 @@ bool Parser::ParseOptionItem() {
         if (!opt.cutoffSet) opt.cutoff = c;
     } else if (k == "maxdepth") {
         Token kw = tokens_.Next();
-        int d = Args(kw, "maxdepth n").ReadInt();
+        TokenArgReader args = Args(kw, "maxdepth n");
+        int d = args.ReadInt();
+        if (d > kMaxRayDepth) {
+            args.Warn(StringPrintf("maxdepth %d exceeds the limit; using %d", d, kMaxRayDepth));
+            d = kMaxRayDepth;
+        }
         if (!opt.maxDepthSet) opt.maxDepth = d;
     } else if (k == "background") {
         Token kw = tokens_.Next();
@@ -630,6 +641,9 @@ std::shared_ptr<Object> Parser::ParseAggregate() {
             args.Warn("Grid voxel counts must be at least 1; grid discarded");
             return nullptr;
         }
+        if (static_cast<double>(n[0]) * n[1] * n[2] > GridAggregate::kMaxVoxels)
+            args.Fail(StringPrintf("A grid of %dx%dx%d voxels exceeds the limit of %ld voxels", n[0],
+                                   n[1], n[2], GridAggregate::kMaxVoxels));
         agg = std::make_shared<GridAggregate>(n[0], n[1], n[2]);
     } else {
         CsgAggregate::Op op = k == "union"       ? CsgAggregate::Op::Union

@@ -60,6 +60,24 @@ std::vector<std::string> SplitWords(const std::string& s) {
     return words;
 }
 
+// cpp's diagnostics without the context it adds around them ("In file included from" chains,
+// source excerpts with carets, "compilation terminated."): only the lines that carry
+// "file:line:col: error|warning: ...". A self-including file thus gives one line instead of
+// 200 include levels. Text without such lines is returned unchanged.
+std::string CppDiagnostics(const std::string& err) {
+    std::string kept;
+    std::istringstream in(err);
+    for (std::string line; std::getline(in, line);) {
+        if (line.find(": error: ") == std::string::npos &&
+            line.find(": fatal error: ") == std::string::npos &&
+            line.find(": warning: ") == std::string::npos)
+            continue;
+        if (!kept.empty()) kept += '\n';
+        kept += line;
+    }
+    return kept.empty() ? err : kept;
+}
+
 // Runs cpp with `args` (argv[0] included), returning its standard output.
 std::string RunCpp(const std::vector<std::string>& args) {
     int outPipe[2], errPipe[2];
@@ -113,6 +131,7 @@ std::string RunCpp(const std::vector<std::string>& args) {
     int status = 0;
     while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
+    err = CppDiagnostics(err);
     while (!err.empty() && err.back() == '\n') err.pop_back();
     if (tooBig)
         Report(Severity::Abort, kNoLocation, "Scene input exceeds %zu bytes", kMaxSceneBytes);

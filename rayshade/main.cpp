@@ -117,13 +117,12 @@ std::string FrameFileName(const std::string& name, int frame) {
     return name.substr(0, dot) + digits + name.substr(dot);
 }
 
-// Resource limits (documented in README.md): images up to 2^28 pixels and 65,536 on a side;
-// up to 16×16 samples per pixel.
-constexpr long kMaxPixels = 1L << 28;
-constexpr int kMaxSide = 65536;
-constexpr int kMaxSamplesPerSide = 16;
-
-void ValidateOptions(const rs::RenderOptions& o) {
+// Resource limits (libshade/scene.h, docs/robustness.md); the scene file's keywords were
+// checked with their locations, these checks catch the command line's values.
+void ValidateOptions(rs::RenderOptions& o) {
+    using rs::kMaxSamplesPerSide;
+    constexpr long kMaxPixels = rs::kMaxResolutionPixels;
+    constexpr int kMaxSide = rs::kMaxResolutionSide;
     if (o.xres < 1 || o.yres < 1 || o.xres > kMaxSide || o.yres > kMaxSide ||
         static_cast<long>(o.xres) * o.yres > kMaxPixels)
         rs::Report(Severity::Abort, {}, "resolution %dx%d is outside 1..%d per side and %ld pixels",
@@ -131,6 +130,11 @@ void ValidateOptions(const rs::RenderOptions& o) {
     if (o.samples < 1 || o.samples > kMaxSamplesPerSide)
         rs::Report(Severity::Abort, {}, "sample count %d is outside 1..%d", o.samples, kMaxSamplesPerSide);
     if (o.frames < 1) rs::Report(Severity::Abort, {}, "the number of frames must be at least 1");
+    if (o.maxDepth > rs::kMaxRayDepth) {
+        rs::Report(Severity::Warn, {}, "maximum ray depth %d exceeds the limit; using %d", o.maxDepth,
+                   rs::kMaxRayDepth);
+        o.maxDepth = rs::kMaxRayDepth;
+    }
 }
 
 int Run(int argc, char** argv) {

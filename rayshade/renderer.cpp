@@ -15,6 +15,9 @@ namespace rs {
 namespace {
 
 const CounterId kSupersampled = RegisterCounter("supersampled pixels");
+// Pixel channels that were NaN or infinite when encoded (written as 0 or 255); printed by -v
+// when non-zero. The numerics tests require it to stay zero.
+const CounterId kNonFinitePixels = RegisterCounter("Non-finite pixel values");
 
 // Purpose tags that separate the random streams of one pixel.
 constexpr uint64_t kSingleSampleStream = 0;
@@ -43,7 +46,10 @@ RenderWindow ComputeWindow(const RenderOptions& o) {
     w.maxY = static_cast<int>(wy0 + crop[3] * (wy1 - wy0));
     if (w.minX < 0 || w.minY < 0 || w.maxX >= o.xres || w.maxY >= o.yres || w.minX > w.maxX ||
         w.minY > w.maxY)
-        Report(Severity::Abort, {}, "Invalid window specification");
+        Report(Severity::Abort, {},
+               "Invalid window specification: columns %d..%d, rows %d..%d of a %dx%d image "
+               "(need 0 <= min <= max < size)",
+               w.minX, w.maxX, w.minY, w.maxY, o.xres, o.yres);
     return w;
 }
 
@@ -295,6 +301,8 @@ Image Renderer::Encode(const FrameState& state, bool withAlpha) const {
         uint8_t* out = image.Row(y);
         for (int x = 0; x < w; ++x) {
             const Pixel& px = state.pixels[static_cast<size_t>(y) * w + x];
+            if (!std::isfinite(px.r) || !std::isfinite(px.g) || !std::isfinite(px.b)) [[unlikely]]
+                Count(kNonFinitePixels);
             *out++ = EncodeChannel(px.r, exponent);
             *out++ = EncodeChannel(px.g, exponent);
             *out++ = EncodeChannel(px.b, exponent);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "libimage/image.h"
@@ -44,10 +45,16 @@ struct PixelState {
     bool supersampled = false;
 
     Color Value() const { return {r, g, b}; }
+    // Values beyond float's range (a light of intensity 1e300) saturate at ±FLT_MAX instead of
+    // becoming infinite; NaN stays NaN (Renderer::Encode counts it).
     void SetValue(const Color& c) {
-        r = static_cast<float>(c.r);
-        g = static_cast<float>(c.g);
-        b = static_cast<float>(c.b);
+        r = ToFloat(c.r);
+        g = ToFloat(c.g);
+        b = ToFloat(c.b);
+    }
+    static float ToFloat(double v) {
+        constexpr double kMax = std::numeric_limits<float>::max();
+        return static_cast<float>(v > kMax ? kMax : v < -kMax ? -kMax : v);
     }
 };
 

@@ -32,6 +32,9 @@ struct CachedOccluder {
 };
 thread_local std::vector<CachedOccluder> tOccluderCache;
 thread_local const void* tOccluderCacheOwner = nullptr;
+// Normals that arrived non-finite or zero and were replaced (see Tracer::Evaluate); printed
+// by -v when non-zero. The numerics tests require it to stay zero.
+const CounterId kBadNormals = RegisterCounter("Non-finite or zero normals replaced");
 
 bool AnyAbove(const Color& c, const Color& threshold) {
     return c.r > threshold.r || c.g > threshold.g || c.b > threshold.b;
@@ -157,6 +160,18 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
         n = Normalize(worldFromPrimitive.ApplyNormal(n));
         ng = Normalize(worldFromPrimitive.ApplyNormal(ng));
         sp.point = ray.At(hit.t());
+    }
+
+    // Numerical guard, six finiteness tests per hit: a normal that overflowed or vanished
+    // (extreme scale factors, degenerate geometry) must not carry NaN into the shading, so
+    // the geometric normal falls back to facing the ray and the shading normal to it.
+    if (!IsFinite(ng) || LengthSquared(ng) == 0) [[unlikely]] {
+        Count(kBadNormals);
+        ng = -ray.dir;
+    }
+    if (!IsFinite(n) || LengthSquared(n) == 0) [[unlikely]] {
+        Count(kBadNormals);
+        n = ng;
     }
 
     // Face the ray (double-sided shading). For interpolated normals the geometric normal

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "libcommon/constants.h"
+#include "libcommon/error.h"
 #include "libobj/object.h"
 
 namespace rs {
@@ -81,6 +82,25 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
             for (int y = lo[1]; y <= hi[1]; ++y)
                 for (int x = lo[0]; x <= hi[0]; ++x) visit(CellIndex(x, y, z));
     };
+    // The entry count first, from each box's voxel range, so a grid too fine for its
+    // children is refused before any entry is stored or visited.
+    uint64_t entries = 0;
+    for (const Object* child : bounded_) {
+        const Bounds3 box = child->BoundsInParent();
+        if (box.IsEmpty()) continue;
+        const Bounds3 padded = box.Padded(kEpsilon);
+        uint64_t cells = 1;
+        for (int a = 0; a < 3; ++a)
+            cells *= static_cast<uint64_t>(VoxelOf(padded.hi[a], a) - VoxelOf(padded.lo[a], a) + 1);
+        entries += cells;
+    }
+    if (entries > kMaxEntries) {
+        Report(Severity::Abort, {},
+               "grid %dx%dx%d: its %zu children overlap %llu voxels in total, more than the "
+               "limit of %llu; use fewer voxels",
+               n_[0], n_[1], n_[2], bounded_.size(), static_cast<unsigned long long>(entries),
+               static_cast<unsigned long long>(kMaxEntries));
+    }
     for (const Object* child : bounded_) {
         forEachCell(child->BoundsInParent(), [&](int c) { ++cellStart_[c + 1]; });
     }

@@ -113,6 +113,9 @@ KernelSpec ReadKernel(ArgReader& args) {
     return k;
 }
 
+// Polyline skeletons hold at most 2^20 points.
+constexpr int kMaxPolylinePoints = 1 << 20;
+
 // Number count of each skeleton keyword (polyline: read separately).
 int SkeletonArity(const std::string& kind) {
     static const std::map<std::string, int> arity = {
@@ -359,6 +362,11 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             if (count < 0) {
                 int points = args.ReadInt();
                 if (points < 2) args.Fail("polyline '" + e.name + "' needs at least 2 points");
+                // Each point is three numbers of the input, so a count beyond what any input
+                // holds only overflows 3·points (kMaxPolylinePoints, docs/robustness.md).
+                if (points > kMaxPolylinePoints)
+                    args.Fail(StringPrintf("polyline '%s' has more than %d points", e.name.c_str(),
+                                           kMaxPolylinePoints));
                 count = 3 * points;
             }
             for (int i = 0; i < count; ++i) e.numbers.push_back(args.ReadAnimatedNumber());
