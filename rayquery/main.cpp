@@ -1,19 +1,19 @@
 // rayquery: first hits of world-space rays against a scene (see README.md in this folder).
 //   rayquery [-m METHOD] [-v] SCENE.ray < rays.txt
+#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
-#include <new>
 #include <string>
 
 #include "libcommon/error.h"
 #include "libcommon/stats.h"
+#include "libshade/command.h"
 #include "libshade/parser.h"
 #include "rayquery/query.h"
 
 namespace {
 
-using rs::Severity;
 
 constexpr const char* kUsage =
     "usage: rayquery [-m patches|kb89] [-v] SCENE.ray < rays.txt\n"
@@ -22,19 +22,6 @@ constexpr const char* kUsage =
     "  each output line: hit T PX PY PZ NX NY NZ OBJECT PATCH EVALS  |  miss EVALS\n"
     "  -m METHOD  intersection method of every implicit object\n"
     "  -v         print the statistics counters to standard error at the end\n";
-
-void PrintDiagnostic(const rs::Diagnostic& d) {
-    const char* kind = d.severity == Severity::Advise || d.severity == Severity::Warn
-                           ? "Warning"
-                           : (d.severity == Severity::Abort ? "Error" : "Fatal error");
-    if (d.location.IsKnown()) {
-        std::fprintf(stderr, "rayquery: %s: %s:%d: %s\n", kind,
-                     d.location.file.empty() ? "<stdin>" : d.location.file.c_str(),
-                     d.location.line, d.message.c_str());
-    } else {
-        std::fprintf(stderr, "rayquery: %s: %s\n", kind, d.message.c_str());
-    }
-}
 
 int Run(int argc, char** argv) {
     bool verbose = false, overrideMethod = false;
@@ -108,13 +95,6 @@ int Run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    rs::SetErrorSink(PrintDiagnostic);
-    try {
-        return Run(argc, argv);
-    } catch (const rs::FatalError& e) {
-        return e.ExitStatus();
-    } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "rayquery: Fatal error: out of memory\n");
-        return 2;
-    }
+    const std::atomic<bool> quiet{false};
+    return rs::RunCommand("rayquery", quiet, [&] { return Run(argc, argv); });
 }

@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -14,6 +15,7 @@
 #include "libcommon/stats.h"
 #include "libimage/image.h"
 #include "liblight/directional_light.h"
+#include "libshade/command.h"
 #include "libshade/expression.h"
 #include "libshade/parser.h"
 #include "rayshade/checkpoint.h"
@@ -25,21 +27,8 @@ namespace {
 
 using rs::Severity;
 
-bool gQuiet = false;
+std::atomic<bool> gQuiet{false};
 std::FILE* gStats = stderr;
-
-void PrintDiagnostic(const rs::Diagnostic& d) {
-    if (d.severity == Severity::Advise && gQuiet) return;
-    const char* kind = d.severity == Severity::Advise || d.severity == Severity::Warn
-                           ? "Warning"
-                           : (d.severity == Severity::Abort ? "Error" : "Fatal error");
-    if (d.location.IsKnown())
-        std::fprintf(stderr, "rayshade: %s: %s:%d: %s\n", kind,
-                     d.location.file.empty() ? "<stdin>" : d.location.file.c_str(), d.location.line,
-                     d.message.c_str());
-    else
-        std::fprintf(stderr, "rayshade: %s: %s\n", kind, d.message.c_str());
-}
 
 // Progress on stderr: a live bar on a terminal, a plain line every 10% otherwise.
 class Progress {
@@ -263,13 +252,5 @@ int Run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    rs::SetErrorSink(PrintDiagnostic);
-    try {
-        return Run(argc, argv);
-    } catch (const rs::FatalError& e) {
-        return e.ExitStatus();
-    } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "rayshade: Fatal error: out of memory\n");
-        return 2;
-    }
+    return rs::RunCommand("rayshade", gQuiet, [&] { return Run(argc, argv); });
 }
