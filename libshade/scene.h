@@ -73,7 +73,6 @@ struct RenderOptions {
     Color background;
     bool shadowTransparency = true;  // toggled by `shadowtransp` and -o
     bool noShadows = false;          // -n
-    bool shadowCache = true;         // -s toggles: test each light's last occluder first
     bool flipNormals = false;        // -f, read by triangles/polygons at creation
     double gamma = 1;                // -G
 

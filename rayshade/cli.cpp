@@ -148,7 +148,7 @@ bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std
                 if (o.samples < 1) o.samples = 1;
                 o.samplesSet = true;
                 break;
-            case 's': o.shadowCache = !o.shadowCache; break;
+            case 's': break;  // shadow caching changes only statistics; we do not cache
             case 'T':
                 if (!in.Real(flag, o.contrast.r) || !in.Real(flag, o.contrast.g) ||
                     !in.Real(flag, o.contrast.b))

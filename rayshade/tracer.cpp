@@ -19,19 +19,6 @@ const CounterId kReflectedRays = RegisterCounter("reflected rays");
 const CounterId kRefractedRays = RegisterCounter("refracted rays");
 const CounterId kHitRays = RegisterCounter("hit rays");
 const CounterId kShadowHits = RegisterCounter("shadow hits");
-const CounterId kCacheHits = RegisterCounter("shadow cache hits");
-const CounterId kCacheMisses = RegisterCounter("shadow cache misses");
-
-// The shadow cache (the original's, spec §3.7): per thread, for each light and ray depth,
-// the node path of the last opaque occluder, from the outermost CSG node containing the
-// hit primitive (or the primitive's own node) up to the World. Neighbouring shadow rays
-// are usually blocked by the same object, which is then found without a search.
-struct CachedOccluder {
-    const Object* path[HitRecord::kMaxPath];
-    int length = 0;  // 0: empty
-};
-thread_local std::vector<CachedOccluder> tOccluderCache;
-thread_local const void* tOccluderCacheOwner = nullptr;
 // Normals that arrived non-finite or zero and were replaced (see Tracer::Evaluate); printed
 // by -v when non-zero. The numerics tests require it to stay zero.
 const CounterId kBadNormals = RegisterCounter("Non-finite or zero normals replaced");
@@ -186,12 +173,6 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
 
 Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
                     MediumStack& media, SampleState& sample) const {
-    // Shadow-cache slot of a light (reverse iterator into the light list) at this depth.
-    auto CacheSlot = [&](auto lightIt, int rayDepth) {
-        if (!options_.shadowCache) return -1;
-        int light = static_cast<int>(scene_.lights.rend() - lightIt) - 1;
-        return light * (options_.maxDepth + 1) + std::min(rayDepth, options_.maxDepth);
-    };
     const ShadingPoint sp = Evaluate(ray, hit, true, sample);
     const Surface& s = sp.surface;
     const Vec3& n = sp.normal;
@@ -212,7 +193,7 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
         if (cosTheta > 0) {
             Color li = noShadow ? ls.color
                                 : LightThroughShadows(sp.point, ray.time, ls.color, ls.shadowDir,
-                                                      ls.shadowDist, sample, CacheSlot(it, depth));
+                                                      ls.shadowDist, sample);
             if (li == Color{}) continue;
             c += s.diffuse * li * cosTheta;
             double cosAlpha = Dot(mirror, ls.shadeDir);
@@ -224,7 +205,7 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
             // intended behaviour (no shipped scene uses translucency).
             Color li = noShadow ? ls.color
                                 : LightThroughShadows(sp.point, ray.time, ls.color, ls.shadowDir,
-                                                      ls.shadowDist, sample, CacheSlot(it, depth));
+                                                      ls.shadowDist, sample);
             if (li == Color{}) continue;
             Color share = s.translucentColor * li * (-cosTheta);
             double cosAlpha = -Dot(mirror, ls.shadeDir);
@@ -278,57 +259,10 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
     return c;
 }
 
-bool Tracer::CachedOccluderBlocks(const Ray& ray, double dist, int cacheSlot) const {
-    if (tOccluderCacheOwner != this || cacheSlot >= static_cast<int>(tOccluderCache.size()))
-        return false;
-    const CachedOccluder& cached = tOccluderCache[cacheSlot];
-    if (cached.length == 0) return false;
-    // Bring the ray from the World's space down to the cached node's parent space.
-    Ray r = ray;
-    for (int i = cached.length - 1; i >= 1; --i) {
-        const TransformList& list = cached.path[i]->parentFromObject;
-        if (list.IsIdentity()) continue;
-        r = list.IsAnimated() ? list.At(r.time).InverseRay(r) : list.Static().InverseRay(r);
-    }
-    HitRecord hit;
-    double tMax = dist;
-    if (!cached.path[0]->Intersect(r, kShadowEpsilon, tMax, hit)) return false;
-    for (int i = 1; i < cached.length && hit.pathLength < HitRecord::kMaxPath; ++i)
-        hit.path[hit.pathLength++] = cached.path[i];
-    return !options_.shadowTransparency || UntexturedSurface(hit).transp < kEpsilon;
-}
-
-void Tracer::RememberOccluder(const HitRecord& hit, int cacheSlot) const {
-    if (tOccluderCacheOwner != this) {
-        tOccluderCache.assign(scene_.lights.size() * (options_.maxDepth + 1), CachedOccluder{});
-        tOccluderCacheOwner = this;
-    }
-    if (cacheSlot >= static_cast<int>(tOccluderCache.size())) return;
-    // Start at the outermost CSG node on the path, if any: only it knows which of its
-    // operands' surfaces are real.
-    int first = 0;
-    for (int i = 0; i < hit.pathLength; ++i) {
-        const Aggregate* a = hit.path[i]->aggregate();
-        if (a && a->IsCsg()) first = i;
-    }
-    CachedOccluder& cached = tOccluderCache[cacheSlot];
-    cached.length = hit.pathLength - first;
-    for (int i = 0; i < cached.length; ++i) cached.path[i] = hit.path[first + i];
-}
-
 Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light,
-                                  const Vec3& dir, double dist, SampleState& sample,
-                                  int cacheSlot) const {
+                                  const Vec3& dir, double dist, SampleState& sample) const {
     Count(kShadowRays);
     const Ray ray{p, dir, time};
-    if (cacheSlot >= 0) {
-        if (CachedOccluderBlocks(ray, dist, cacheSlot)) {
-            Count(kCacheHits);
-            Count(kShadowHits);
-            return {};
-        }
-        Count(kCacheMisses);
-    }
     Color c = light;
     double tMin = kShadowEpsilon;
     bool previousEntering = false;
@@ -342,7 +276,6 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
         if (!scene_.world->Intersect(ray, tMin, tMax, hit)) return c;
         if (!options_.shadowTransparency || UntexturedSurface(hit).transp < kEpsilon) {
             Count(kShadowHits);
-            if (cacheSlot >= 0) RememberOccluder(hit, cacheSlot);
             return {};
         }
         if (previousEntering)

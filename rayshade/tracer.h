@@ -53,13 +53,8 @@ class Tracer {
     Color Shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
                 MediumStack& media, SampleState& sample) const;
     // Light arriving at `p` from a light sample after occluders (black when blocked).
-    // `cacheSlot` identifies the light and ray depth for the occluder cache (−1: none).
     Color LightThroughShadows(const Vec3& p, double time, const Color& light,
-                              const Vec3& dir, double dist, SampleState& sample,
-                              int cacheSlot) const;
-    // Whether the opaque occluder that last blocked `cacheSlot` blocks this shadow ray too.
-    bool CachedOccluderBlocks(const Ray& ray, double dist, int cacheSlot) const;
-    void RememberOccluder(const HitRecord& hit, int cacheSlot) const;
+                              const Vec3& dir, double dist, SampleState& sample) const;
     Color Atmosphere(const Ray& ray, double dist, const Color& c) const;
     const Surface& UntexturedSurface(const HitRecord& hit) const;
 

@@ -25,9 +25,6 @@ class Aggregate {
     virtual Bounds3 Bounds() const = 0;
     virtual bool IsBounded() const = 0;
     virtual bool IsClosed() const { return false; }
-    // CSG decides which of its operands' surfaces exist, so a hit on a primitive below it
-    // can only be re-tested through the CSG node itself.
-    virtual bool IsCsg() const { return false; }
 
     // Recomputes bounds (and rebuilds grids) for the frame starting at frameTime, after the
     // children have been prepared. `shutter` is the exposure length (0: no motion blur).

@@ -12,7 +12,6 @@ class CsgAggregate final : public Aggregate {
     explicit CsgAggregate(Op op) : op_(op) {}
 
     const char* TypeName() const override;
-    bool IsCsg() const override { return true; }
 
     // Exactly two children (A first, then B) make a valid CSG node; the parser warns and
     // discards the node otherwise. An invalid node hits nothing.
