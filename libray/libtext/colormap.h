@@ -14,6 +14,7 @@
 
 #include "libcommon/arg_reader.h"
 #include "libcommon/vector.h"
+#include "libsurf/surface.h"
 
 namespace rs {
 
@@ -34,6 +35,19 @@ std::shared_ptr<const ColorMap> ReadColorMapArgument(ArgReader& args);
 inline const Color& ColorMapLookup(const ColorMap& map, double scaled) {
     int i = scaled >= 255 ? 255 : (scaled > 0 ? static_cast<int>(scaled) : 0);
     return map[i];
+}
+
+// What marble and fbm do with their value v ∈ [0, 1]: with a colour map, ambient and
+// diffuse are multiplied by the entry ⌊255·v⌋; without one, by v itself.
+inline void ModulateAmbientDiffuse(Surface& surface, const ColorMap* map, double v) {
+    if (map) {
+        const Color& c = ColorMapLookup(*map, 255 * v);
+        surface.ambient *= c;
+        surface.diffuse *= c;
+    } else {
+        surface.ambient *= v;
+        surface.diffuse *= v;
+    }
 }
 
 }  // namespace rs

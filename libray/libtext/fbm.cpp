@@ -32,14 +32,7 @@ void FBmTexture::Apply(TextureContext& ctx, Surface& surface) const {
     Vec3 p = TextureSpace(transform, ctx.time).Point(ctx.point);
     double v = FBm(p, omega_, lambda_, octaves_);
     v = v < threshold_ ? offset_ : offset_ + scale_ * (v - threshold_);
-    if (colorMap_) {
-        const Color& c = ColorMapLookup(*colorMap_, 255 * v);
-        surface.ambient *= c;
-        surface.diffuse *= c;
-    } else {
-        surface.ambient *= v;
-        surface.diffuse *= v;
-    }
+    ModulateAmbientDiffuse(surface, colorMap_.get(), v);
 }
 
 }  // namespace rs

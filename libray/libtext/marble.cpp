@@ -15,14 +15,7 @@ std::shared_ptr<Texture> MarbleTexture::Create(ArgReader& args) {
 void MarbleTexture::Apply(TextureContext& ctx, Surface& surface) const {
     Vec3 p = TextureSpace(transform, ctx.time).Point(ctx.point);
     double v = std::pow(0.5 * (std::sin(8 * Chaos(p, 6) + 7 * p.z) + 1), 0.77);
-    if (colorMap_) {
-        const Color& c = ColorMapLookup(*colorMap_, 255 * v);
-        surface.ambient *= c;
-        surface.diffuse *= c;
-    } else {
-        surface.ambient *= v;
-        surface.diffuse *= v;
-    }
+    ModulateAmbientDiffuse(surface, colorMap_.get(), v);
 }
 
 }  // namespace rs
