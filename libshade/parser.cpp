@@ -5,6 +5,7 @@
 #include <optional>
 #include <unordered_map>
 
+#include "libcommon/limits.h"
 #include "libcommon/constants.h"
 #include "liblight/lights.h"
 #include "libobj/csg.h"
@@ -236,10 +237,11 @@ bool Parser::ParseCameraItem() {
         TokenArgReader args = Args(kw, "screen xres yres");
         int x = args.ReadInt(), y = args.ReadInt();
         if (x < 1 || y < 1) args.Fail("Invalid screen resolution");
-        if (x > kMaxResolutionSide || y > kMaxResolutionSide ||
-            static_cast<long>(x) * y > kMaxResolutionPixels)
-            args.Fail(StringPrintf("Screen resolution %dx%d exceeds the limits (%d per side, %ld "
-                                   "pixels)", x, y, kMaxResolutionSide, kMaxResolutionPixels));
+        const ResourceLimits& limits = Limits();
+        if (x > limits.resolutionSide || y > limits.resolutionSide ||
+            static_cast<long>(x) * y > limits.resolutionPixels)
+            args.Fail(StringPrintf("Screen resolution %dx%d exceeds the limits (%ld per side, %ld "
+                                   "pixels)", x, y, limits.resolutionSide, limits.resolutionPixels));
         if (!opt.resolutionSet) opt.xres = x, opt.yres = y;
     } else if (k == "window") {
         Token kw = tokens_.Next();
@@ -269,8 +271,8 @@ bool Parser::ParseOptionItem() {
         TokenArgReader args = Args(kw, "sample n [jitter | nojitter]");
         int n = args.ReadInt();
         if (n < 1) args.Fail("The sample count must be at least 1");
-        if (n > kMaxSamplesPerSide)
-            args.Fail(StringPrintf("The sample count must be at most %d", kMaxSamplesPerSide));
+        if (n > Limits().samplesPerSide)
+            args.Fail(StringPrintf("The sample count must be at most %ld", Limits().samplesPerSide));
         if (!opt.samplesSet) opt.samples = n;
         if (args.Accept("jitter")) {
             if (!opt.jitterSet) opt.jitter = true;
@@ -304,9 +306,9 @@ bool Parser::ParseOptionItem() {
         Token kw = tokens_.Next();
         TokenArgReader args = Args(kw, "maxdepth n");
         int d = args.ReadInt();
-        if (d > kMaxRayDepth) {
-            args.Warn(StringPrintf("maxdepth %d exceeds the limit; using %d", d, kMaxRayDepth));
-            d = kMaxRayDepth;
+        if (d > Limits().rayDepth) {
+            args.Warn(StringPrintf("maxdepth %d exceeds the limit; using %ld", d, Limits().rayDepth));
+            d = static_cast<int>(Limits().rayDepth);
         }
         if (!opt.maxDepthSet) opt.maxDepth = d;
     } else if (k == "background") {
@@ -641,9 +643,9 @@ std::shared_ptr<Object> Parser::ParseAggregate() {
             args.Warn("Grid voxel counts must be at least 1; grid discarded");
             return nullptr;
         }
-        if (static_cast<double>(n[0]) * n[1] * n[2] > GridAggregate::kMaxVoxels)
+        if (static_cast<double>(n[0]) * n[1] * n[2] > static_cast<double>(Limits().gridVoxels))
             args.Fail(StringPrintf("A grid of %dx%dx%d voxels exceeds the limit of %ld voxels", n[0],
-                                   n[1], n[2], GridAggregate::kMaxVoxels));
+                                   n[1], n[2], Limits().gridVoxels));
         agg = std::make_shared<GridAggregate>(n[0], n[1], n[2]);
     } else {
         CsgAggregate::Op op = k == "union"       ? CsgAggregate::Op::Union

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "libcommon/limits.h"
 #include "libcommon/error.h"
 
 extern char** environ;
@@ -43,9 +44,9 @@ std::string ReadRaw(const std::string& path) {
         Report(Severity::Abort, kNoLocation, "Cannot open %s: %s", path.c_str(), strerror(errno));
     std::string text;
     while (Drain(fd, text)) {
-        if (text.size() > kMaxSceneBytes) {
+        if (text.size() > static_cast<size_t>(Limits().sceneBytes)) {
             if (!path.empty()) close(fd);
-            Report(Severity::Abort, kNoLocation, "Scene input exceeds %zu bytes", kMaxSceneBytes);
+            Report(Severity::Abort, kNoLocation, "Scene input exceeds %zu bytes", static_cast<size_t>(Limits().sceneBytes));
         }
     }
     if (!path.empty()) close(fd);
@@ -123,7 +124,7 @@ std::string RunCpp(const std::vector<std::string>& args) {
             outOpen = Drain(outPipe[0], out);
         if (errOpen && (fds[1].revents & (POLLIN | POLLHUP | POLLERR)))
             errOpen = Drain(errPipe[0], err);
-        tooBig = out.size() > kMaxSceneBytes || err.size() > kMaxSceneBytes;
+        tooBig = out.size() > static_cast<size_t>(Limits().sceneBytes) || err.size() > static_cast<size_t>(Limits().sceneBytes);
     }
     close(outPipe[0]);
     close(errPipe[0]);
@@ -134,7 +135,7 @@ std::string RunCpp(const std::vector<std::string>& args) {
     err = CppDiagnostics(err);
     while (!err.empty() && err.back() == '\n') err.pop_back();
     if (tooBig)
-        Report(Severity::Abort, kNoLocation, "Scene input exceeds %zu bytes", kMaxSceneBytes);
+        Report(Severity::Abort, kNoLocation, "Scene input exceeds %zu bytes", static_cast<size_t>(Limits().sceneBytes));
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
         Report(Severity::Abort, kNoLocation, "The C preprocessor failed%s%s",
                err.empty() ? "" : ":\n", err.c_str());

@@ -11,8 +11,6 @@ struct SourceText {
     std::string fileName;  // for locations until the first line marker: the path or "stdin"
 };
 
-// Inputs larger than this are rejected rather than exhausting memory.
-inline constexpr size_t kMaxSceneBytes = size_t{1} << 30;
 
 // Reads the scene from `path` (empty: standard input). With `useCpp`, runs
 //     cpp [words of cppArgs] [-D<define>...] [path]

@@ -25,17 +25,6 @@ struct Camera {
 
 enum class FilterKind { Box, Gauss };
 
-// Resource limits (docs/robustness.md lists them with the way to raise each). Beyond them the
-// scene is refused with a message (the ray depth is clamped with a warning).
-// Image: at most 65,536 pixels on a side and 2^28 pixels (1 GiB of 8-bit RGBA output; the
-// renderer keeps about 20 bytes of state per pixel besides).
-inline constexpr int kMaxResolutionSide = 65536;
-inline constexpr long kMaxResolutionPixels = 1L << 28;
-// Samples per pixel side: 16 → 256 rays per pixel before adaptive refinement.
-inline constexpr int kMaxSamplesPerSide = 16;
-// Reflection/refraction depth; the tracer recurses once per level, so this bounds its stack.
-inline constexpr int kMaxRayDepth = 64;
-
 // An atmospheric effect (spec §3.8); parsed now, applied by the renderer.
 struct AtmosphereEffect {
     enum class Kind { Fog, Mist, FogDeck } kind = Kind::Fog;

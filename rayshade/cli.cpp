@@ -3,6 +3,8 @@
 #include <cerrno>
 #include <cstdlib>
 
+#include "libcommon/limits.h"
+
 namespace rs {
 
 namespace {
@@ -70,7 +72,10 @@ const char* UsageText() {
            "  -T r g b      contrast thresholds          -t threads   worker threads (default: all cores)\n"
            "  -u            toggle the C preprocessor    -V file      verbose report to file\n"
            "  -v            verbose report               -W x0 x1 y0 y1  sub-window (pixels)\n"
-           "  -X l r b t    crop window (fractions)\n";
+           "  -X l r b t    crop window (fractions)\n"
+           "  -L name=value raise a resource limit (docs/robustness.md): resolutionSide,\n"
+           "                resolutionPixels, samplesPerSide, rayDepth, sceneBytes, gridVoxels,\n"
+           "                gridEntries, polylinePoints, octreeBytes\n";
 }
 
 bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std::string& error) {
@@ -117,6 +122,13 @@ bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std
                 o.jitterSet = true;
                 break;
             case 'l': o.eyeSepSide = -1; break;
+            case 'L': {
+                std::string assignment;
+                if (!in.Word(flag, assignment)) return false;
+                std::string limitError;
+                if (!SetLimit(assignment, limitError)) return in.Fail(limitError);
+                break;
+            }
             case 'r': o.eyeSepSide = 1; break;
             case 'm': break;  // sample map in the RLE alpha channel: no RLE writer
             case 'N':

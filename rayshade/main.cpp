@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "libcommon/error.h"
+#include "libcommon/limits.h"
 #include "libcommon/stats.h"
 #include "libimage/image.h"
 #include "liblight/directional_light.h"
@@ -106,23 +107,22 @@ std::string FrameFileName(const std::string& name, int frame) {
     return name.substr(0, dot) + digits + name.substr(dot);
 }
 
-// Resource limits (libshade/scene.h, docs/robustness.md); the scene file's keywords were
-// checked with their locations, these checks catch the command line's values.
+// Resource limits (libcommon/limits.h, docs/robustness.md; raised with -L name=value); the
+// scene file's keywords were checked with their locations, these checks catch the command
+// line's values.
 void ValidateOptions(rs::RenderOptions& o) {
-    using rs::kMaxSamplesPerSide;
-    constexpr long kMaxPixels = rs::kMaxResolutionPixels;
-    constexpr int kMaxSide = rs::kMaxResolutionSide;
-    if (o.xres < 1 || o.yres < 1 || o.xres > kMaxSide || o.yres > kMaxSide ||
-        static_cast<long>(o.xres) * o.yres > kMaxPixels)
-        rs::Report(Severity::Abort, {}, "resolution %dx%d is outside 1..%d per side and %ld pixels",
-                   o.xres, o.yres, kMaxSide, kMaxPixels);
-    if (o.samples < 1 || o.samples > kMaxSamplesPerSide)
-        rs::Report(Severity::Abort, {}, "sample count %d is outside 1..%d", o.samples, kMaxSamplesPerSide);
+    const rs::ResourceLimits& limits = rs::Limits();
+    if (o.xres < 1 || o.yres < 1 || o.xres > limits.resolutionSide || o.yres > limits.resolutionSide ||
+        static_cast<long>(o.xres) * o.yres > limits.resolutionPixels)
+        rs::Report(Severity::Abort, {}, "resolution %dx%d is outside 1..%ld per side and %ld pixels",
+                   o.xres, o.yres, limits.resolutionSide, limits.resolutionPixels);
+    if (o.samples < 1 || o.samples > limits.samplesPerSide)
+        rs::Report(Severity::Abort, {}, "sample count %d is outside 1..%ld", o.samples, limits.samplesPerSide);
     if (o.frames < 1) rs::Report(Severity::Abort, {}, "the number of frames must be at least 1");
-    if (o.maxDepth > rs::kMaxRayDepth) {
-        rs::Report(Severity::Warn, {}, "maximum ray depth %d exceeds the limit; using %d", o.maxDepth,
-                   rs::kMaxRayDepth);
-        o.maxDepth = rs::kMaxRayDepth;
+    if (o.maxDepth > limits.rayDepth) {
+        rs::Report(Severity::Warn, {}, "maximum ray depth %d exceeds the limit; using %ld", o.maxDepth,
+                   limits.rayDepth);
+        o.maxDepth = static_cast<int>(limits.rayDepth);
     }
 }
 

@@ -6,6 +6,7 @@
 
 #include "libcommon/constants.h"
 #include "libcommon/error.h"
+#include "libcommon/limits.h"
 #include "libobj/object.h"
 
 namespace rs {
@@ -94,12 +95,12 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
             cells *= static_cast<uint64_t>(VoxelOf(padded.hi[a], a) - VoxelOf(padded.lo[a], a) + 1);
         entries += cells;
     }
-    if (entries > kMaxEntries) {
+    if (entries > static_cast<uint64_t>(Limits().gridEntries)) {
         Report(Severity::Abort, {},
                "grid %dx%dx%d: its %zu children overlap %llu voxels in total, more than the "
                "limit of %llu; use fewer voxels",
                n_[0], n_[1], n_[2], bounded_.size(), static_cast<unsigned long long>(entries),
-               static_cast<unsigned long long>(kMaxEntries));
+               static_cast<unsigned long long>(Limits().gridEntries));
     }
     for (const Object* child : bounded_) {
         forEachCell(child->BoundsInParent(), [&](int c) { ++cellStart_[c + 1]; });

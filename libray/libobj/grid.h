@@ -14,11 +14,9 @@ class GridAggregate final : public Aggregate {
     // Resource limits (docs/robustness.md). Voxels: 2^24 (64 MiB of cell offsets), which
     // also keeps CellIndex within int. Voxel entries (one per child per voxel its box
     // overlaps, 4 bytes each): 2^28, 1 GiB; PrepareFrame reports an Abort beyond it.
-    static constexpr long kMaxVoxels = 1L << 24;
-    static constexpr uint64_t kMaxEntries = uint64_t{1} << 28;
 
     // Voxel counts per axis. Counts below 1 are raised to 1 (the parser warns and discards
-    // such grids before building one); nx·ny·nz <= kMaxVoxels (the parser refuses more).
+    // such grids before building one); nx·ny·nz <= Limits().gridVoxels (the parser refuses more).
     GridAggregate(int nx, int ny, int nz);
 
     const char* TypeName() const override { return "grid"; }
@@ -35,7 +33,7 @@ class GridAggregate final : public Aggregate {
     bool IsBounded() const override { return !bounded_.empty(); }
 
     // Rebuilds the grid from the children's BoundsInParent() for this frame. Throws
-    // FatalError (after rs::Report) when the children would need more than kMaxEntries
+    // FatalError (after rs::Report) when the children would need more than Limits().gridEntries
     // voxel entries.
     void PrepareFrame(double frameTime, double shutter) override;
 

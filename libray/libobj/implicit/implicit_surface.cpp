@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <map>
 #include <string>
 
 #include "libcommon/error.h"
+#include "libcommon/limits.h"
 #include "libcommon/stats.h"
 
 namespace rs {
@@ -114,7 +116,6 @@ KernelSpec ReadKernel(ArgReader& args) {
 }
 
 // Polyline skeletons hold at most 2^20 points.
-constexpr int kMaxPolylinePoints = 1 << 20;
 
 // Number count of each skeleton keyword (polyline: read separately).
 int SkeletonArity(const std::string& kind) {
@@ -363,10 +364,12 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
                 int points = args.ReadInt();
                 if (points < 2) args.Fail("polyline '" + e.name + "' needs at least 2 points");
                 // Each point is three numbers of the input, so a count beyond what any input
-                // holds only overflows 3·points (kMaxPolylinePoints, docs/robustness.md).
-                if (points > kMaxPolylinePoints)
-                    args.Fail(StringPrintf("polyline '%s' has more than %d points", e.name.c_str(),
-                                           kMaxPolylinePoints));
+                // holds only overflows 3·points (Limits().polylinePoints, raised with
+                // -L polylinePoints=N, never beyond what 3·points in an int allows).
+                const long maxPoints = std::min<long>(Limits().polylinePoints, INT_MAX / 3);
+                if (points > maxPoints)
+                    args.Fail(StringPrintf("polyline '%s' has more than %ld points", e.name.c_str(),
+                                           maxPoints));
                 count = 3 * points;
             }
             for (int i = 0; i < count; ++i) e.numbers.push_back(args.ReadAnimatedNumber());

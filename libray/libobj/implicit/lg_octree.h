@@ -67,6 +67,7 @@
 #include <optional>
 #include <vector>
 
+#include "libcommon/limits.h"
 #include "libcommon/ray.h"
 #include "libobj/implicit/patch.h"
 
@@ -97,7 +98,7 @@ struct OctreeSettings {
     // Node memory per tree (internal nodes 32 bytes, leaves 16 bytes). A cell subdivides
     // only while one more internal node and eight leaves fit, so the tree may overshoot the
     // budget by at most that much (160 bytes) per level of the path being built.
-    std::size_t memoryBudget = std::size_t(64) << 20;
+    std::size_t memoryBudget = static_cast<std::size_t>(Limits().octreeBytes);
 
     // Search. Root accuracy and splitting floor, as object-space distances.
     double tolerance = 1e-7;

@@ -1,5 +1,7 @@
 #include "rayshade/cli.h"
 
+#include "libcommon/limits.h"
+
 #include <gtest/gtest.h>
 
 namespace rs {
@@ -57,6 +59,30 @@ TEST(CommandLine, ErrorsAreReportedNotCrashed) {
     EXPECT_FALSE(Parse({"a.ray", "b.ray"}, cl, error));
     EXPECT_FALSE(Parse({"-V", "-v"}, cl, error));
     EXPECT_FALSE(Parse({"-t", "0"}, cl, error));
+}
+
+}  // namespace
+}  // namespace rs
+
+namespace rs {
+namespace {
+
+TEST(CommandLine, LimitOptionRaisesALimitAndRejectsNonsense) {
+    const long before = Limits().samplesPerSide;
+    CommandLine cl;
+    std::string error;
+    ASSERT_TRUE(ParseCommandLine({"-L", "samplesPerSide=32"}, cl, error)) << error;
+    EXPECT_EQ(Limits().samplesPerSide, 32);
+    ASSERT_TRUE(ParseCommandLine({"-L", "samplesPerSide=" + std::to_string(before)}, cl, error));
+    EXPECT_EQ(Limits().samplesPerSide, before);
+
+    EXPECT_FALSE(ParseCommandLine({"-L", "nosuch=3"}, cl, error));
+    EXPECT_NE(error.find("unknown limit 'nosuch'"), std::string::npos) << error;
+    EXPECT_FALSE(ParseCommandLine({"-L", "rayDepth=-4"}, cl, error));
+    EXPECT_NE(error.find("not a positive integer"), std::string::npos) << error;
+    EXPECT_FALSE(ParseCommandLine({"-L", "rayDepth"}, cl, error));
+    EXPECT_FALSE(ParseCommandLine({"-L"}, cl, error));
+    EXPECT_EQ(Limits().rayDepth, 64);
 }
 
 }  // namespace
