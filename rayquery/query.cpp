@@ -62,7 +62,9 @@ bool ParseQueryLine(const std::string& line, QueryRay& query, std::string& error
 QueryResult RunQuery(const Object& world, const QueryRay& query) {
     const FieldCounters& ids = FieldCounterIds();
     auto evaluations = [&ids] {
-        return ThreadCount(ids.values) + ThreadCount(ids.gradients) + ThreadCount(ids.bounds);
+        // Less the evaluations of octrees built lazily by this query (not the ray's cost).
+        return ThreadCount(ids.values) + ThreadCount(ids.gradients) + ThreadCount(ids.bounds) -
+               ImplicitBuildEvaluations();
     };
     QueryResult result;
     HitRecord hit;

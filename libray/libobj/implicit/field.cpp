@@ -22,6 +22,11 @@ Bounds3 TermSupportBounds(const FieldTerm& term) {
     return SkeletonBounds(term.skeleton).Padded(term.kernel.Radius());
 }
 
+Field::Field(std::vector<FieldTerm> terms) : terms_(std::move(terms)) {
+    support_.reserve(terms_.size());
+    for (const FieldTerm& t : terms_) support_.push_back(TermSupportBounds(t));
+}
+
 double Field::TermValue(int i, const Vec3& p) const {
     const FieldTerm& t = terms_[i];
     return t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
@@ -30,7 +35,10 @@ double Field::TermValue(int i, const Vec3& p) const {
 double Field::Value(const Vec3& p) const {
     Count(FieldCounterIds().values);
     double sum = 0;
-    for (const FieldTerm& t : terms_) {
+    const int n = Size();
+    for (int i = 0; i < n; ++i) {
+        if (!MayReach(i, p)) continue;  // adds exactly 0
+        const FieldTerm& t = terms_[i];
         sum += t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
     }
     return sum;
@@ -39,7 +47,10 @@ double Field::Value(const Vec3& p) const {
 Vec3 Field::Gradient(const Vec3& p) const {
     Count(FieldCounterIds().gradients);
     Vec3 g;
-    for (const FieldTerm& t : terms_) {
+    const int n = Size();
+    for (int i = 0; i < n; ++i) {
+        if (!MayReach(i, p)) continue;
+        const FieldTerm& t = terms_[i];
         Vec3 closest;
         double d = SkeletonDistance(t.skeleton, p, closest);
         if (d <= 0 || d >= t.kernel.Radius()) continue;
@@ -48,17 +59,29 @@ Vec3 Field::Gradient(const Vec3& p) const {
     return g;
 }
 
-FieldBound Field::Bound(const Bounds3& box) const {
+FieldBound Field::Bound(const Bounds3& box) const { return BoundImpl(box, nullptr); }
+
+FieldBound Field::Bound(const Bounds3& box, std::vector<TermValueRange>& termRanges) const {
+    termRanges.assign(terms_.size(), TermValueRange{});
+    return BoundImpl(box, &termRanges);
+}
+
+FieldBound Field::BoundImpl(const Bounds3& box, std::vector<TermValueRange>* termRanges) const {
     Count(FieldCounterIds().bounds);
     FieldBound fb;
     fb.minDistance = std::numeric_limits<double>::infinity();
-    for (const FieldTerm& t : terms_) {
+    const int n = Size();
+    for (int i = 0; i < n; ++i) {
+        if (!MayReach(i, box)) continue;
+        const FieldTerm& t = terms_[i];
         DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
         if (r.min >= t.kernel.Radius()) continue;  // f = f' = f'' = 0 on the whole box
         KernelBounds kb = t.kernel.Bounds(r.min, r.max);
         double w = std::abs(t.weight);
         double lo = t.weight * (t.weight >= 0 ? kb.valueMin : kb.valueMax);
         double hi = t.weight * (t.weight >= 0 ? kb.valueMax : kb.valueMin);
+        // TermRange's numbers: w·f at the two ends of the distance range, ordered.
+        if (termRanges) (*termRanges)[i] = {std::min(lo, hi), std::max(lo, hi)};
         fb.valueMin += lo;
         fb.valueMax += hi;
         fb.L += w * kb.maxSlope;
@@ -75,6 +98,10 @@ FieldBound Field::Bound(const Bounds3& box) const {
 
 void Field::TermRange(int i, const Bounds3& box, double& lo, double& hi) const {
     const FieldTerm& t = terms_[i];
+    if (!MayReach(i, box)) {
+        lo = hi = 0;
+        return;
+    }
     DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
     double near = t.weight * t.kernel.Value(r.min), far = t.weight * t.kernel.Value(r.max);
     lo = std::min(near, far);

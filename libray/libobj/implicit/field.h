@@ -41,10 +41,14 @@ struct FieldBound {
     int activeTerms = 0;
 };
 
+struct TermValueRange {
+    double lo = 0, hi = 0;
+};
+
 class Field {
   public:
     Field() = default;
-    explicit Field(std::vector<FieldTerm> terms) : terms_(std::move(terms)) {}
+    explicit Field(std::vector<FieldTerm> terms);
 
     const std::vector<FieldTerm>& Terms() const { return terms_; }
     int Size() const { return static_cast<int>(terms_.size()); }
@@ -57,6 +61,9 @@ class Field {
     // and undefined for the linear one).
     Vec3 Gradient(const Vec3& p) const;
     FieldBound Bound(const Bounds3& box) const;
+    // Bound, also storing in termRanges[i] the range [lo, hi] TermRange gives for term i
+    // (the same numbers, computed once for both; termRanges is resized to Size()).
+    FieldBound Bound(const Bounds3& box, std::vector<TermValueRange>& termRanges) const;
     // [lo, hi] containing w_i f_i(d_i(p)) for every p in the box (f is monotone in d).
     void TermRange(int i, const Bounds3& box, double& lo, double& hi) const;
 
@@ -64,7 +71,26 @@ class Field {
     Bounds3 SupportBounds() const;
 
   private:
+    FieldBound BoundImpl(const Bounds3& box, std::vector<TermValueRange>* termRanges) const;
+
+    // Whether p may lie in the support of term i: false only where d_i(p) >= R_i, so the
+    // term and its derivatives are exactly 0 there and the sums may skip it (a box test
+    // instead of a distance).
+    bool MayReach(int i, const Vec3& p) const {
+        const Bounds3& b = support_[i];
+        return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y &&
+               p.z >= b.lo.z && p.z <= b.hi.z;
+    }
+    // Likewise for a box: false only where the box misses the term's support box, so every
+    // point of it is at distance >= R_i (and the distance range's lower end too).
+    bool MayReach(int i, const Bounds3& box) const {
+        const Bounds3& b = support_[i];
+        return box.lo.x <= b.hi.x && box.hi.x >= b.lo.x && box.lo.y <= b.hi.y &&
+               box.hi.y >= b.lo.y && box.lo.z <= b.hi.z && box.hi.z >= b.lo.z;
+    }
+
     std::vector<FieldTerm> terms_;
+    std::vector<Bounds3> support_;  // TermSupportBounds of each term
 };
 
 // The statistics counters of every Field (libcommon/stats.h), so callers can attribute

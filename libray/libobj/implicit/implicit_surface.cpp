@@ -223,56 +223,118 @@ std::string ImplicitSurface::PatchName(const PrimitiveHit& hit) const {
     return terms_[patches_[hit.part].Own()].name;
 }
 
-// Builds the patches and octrees and counts the work under this object's label. Builds run
-// outside rendering (parsing, PrepareFrame), so the differences of the process-wide totals
-// around it are this object's; the build counters are found by their common prefix.
+namespace {
+
+// The module's counters a build advances ("Implicit octree ..." and the field, gradient
+// and bound counters, i.e. every "Implicit ..." counter but the per-object ones), with the
+// name of the per-object counter each is attributed to ("octree ..." or "preprocessing
+// ..."). Found by name once, on the first object's construction (parsing, not rendering).
+const std::vector<std::pair<CounterId, std::string>>& BuildCounterSources() {
+    static const std::vector<std::pair<CounterId, std::string>> sources = [] {
+        RiddersIterationCounter();  // registers the octree counters
+        FieldCounterIds();
+        std::vector<std::pair<CounterId, std::string>> out;
+        const std::vector<CounterValue> all = StatsSnapshot();
+        for (size_t i = 0; i < all.size(); ++i) {
+            const std::string& name = all[i].name;
+            if (!StartsWith(name, kCounterPrefix) || StartsWith(name, "Implicit object")) {
+                continue;
+            }
+            std::string what = name.substr(std::char_traits<char>::length(kCounterPrefix));
+            if (!StartsWith(name, kOctreeCounterPrefix)) what = "preprocessing " + what;
+            out.emplace_back(static_cast<CounterId>(i), what);
+        }
+        return out;
+    }();
+    return sources;
+}
+
+// The evaluations this thread made inside lazy builds, so Intersect can leave them out of
+// the ray's own counts.
+struct BuildTally {
+    uint64_t values = 0, gradients = 0, bounds = 0, riddersIterations = 0;
+};
+thread_local BuildTally buildTally;
+
+}  // namespace
+
+uint64_t ImplicitBuildEvaluations() {
+    return buildTally.values + buildTally.gradients + buildTally.bounds;
+}
+
+// Builds the patches and BVH (the octrees are built lazily, see Tree) and counts the time
+// under this object's label.
 void ImplicitSurface::Build() {
-    const std::vector<CounterValue> before = StatsSnapshot();
     const auto start = std::chrono::steady_clock::now();
     BuildStructures();
     const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
         std::chrono::steady_clock::now() - start);
     Count(counters_.buildMicroseconds, static_cast<uint64_t>(micros.count()));
-    uint64_t cells = 0, memory = 0;
-    for (const LGOctree& tree : trees_) {
-        cells += static_cast<uint64_t>(tree.InternalCount() + tree.LeafCount());
-        memory += tree.MemoryBytes();
+}
+
+const LGOctree& ImplicitSurface::Tree(int i) const {
+    LazyTree& lazy = trees_[i];
+    std::call_once(lazy.once, [this, i] { BuildTree(i); });
+    return *lazy.tree;
+}
+
+// Builds tree i and attributes the work to this object by differences of the building
+// thread's own counters (other threads may be counting at the same time).
+void ImplicitSurface::BuildTree(int i) const {
+    const std::vector<std::pair<CounterId, std::string>>& sources = BuildCounterSources();
+    std::vector<uint64_t> before(sources.size());
+    for (size_t k = 0; k < sources.size(); ++k) before[k] = ThreadCount(sources[k].first);
+    const auto start = std::chrono::steady_clock::now();
+    if (options_.singleOctree) {
+        trees_[i].tree.emplace(whole_, options_.threshold, bounds_, options_.octree);
+    } else {
+        trees_[i].tree.emplace(BuildPatchOctree(patches_[i], options_.threshold, options_.octree));
     }
-    Count(counters_.cells, cells);
-    Count(counters_.memoryBytes, memory);
-    const std::vector<CounterValue> after = StatsSnapshot();
-    for (size_t i = 0; i < after.size(); ++i) {
-        const std::string& name = after[i].name;
-        uint64_t delta = after[i].value - (i < before.size() ? before[i].value : 0);
-        if (delta == 0 || !StartsWith(name, kCounterPrefix) || StartsWith(name, "Implicit object")) {
-            continue;
+    const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
+        std::chrono::steady_clock::now() - start);
+    const LGOctree& tree = *trees_[i].tree;
+    Count(counters_.buildMicroseconds, static_cast<uint64_t>(micros.count()));
+    Count(counters_.cells, static_cast<uint64_t>(tree.InternalCount() + tree.LeafCount()));
+    Count(counters_.memoryBytes, tree.MemoryBytes());
+    const FieldCounters& field = FieldCounterIds();
+    for (size_t k = 0; k < sources.size(); ++k) {
+        const CounterId source = sources[k].first;
+        const uint64_t delta = ThreadCount(source) - before[k];
+        if (delta == 0) continue;
+        if (source == field.values) buildTally.values += delta;
+        if (source == field.gradients) buildTally.gradients += delta;
+        if (source == field.bounds) buildTally.bounds += delta;
+        if (source == RiddersIterationCounter()) buildTally.riddersIterations += delta;
+        CounterId target = buildCounterIds_[k].load(std::memory_order_relaxed);
+        if (target < 0) {
+            // RegisterCounter is idempotent, so racing threads store the same id.
+            target = RegisterCounter(label_ + ": " + sources[k].second);
+            buildCounterIds_[k].store(target, std::memory_order_relaxed);
         }
-        std::string what = name.substr(std::char_traits<char>::length(kCounterPrefix));
-        if (!StartsWith(name, kOctreeCounterPrefix)) what = "preprocessing " + what;
-        Count(RegisterCounter(label_ + ": " + what), delta);
+        Count(target, delta);
     }
 }
 
 void ImplicitSurface::BuildStructures() {
     whole_ = Field(terms_);
     patches_.clear();
-    trees_.clear();
     bounds_ = Bounds3();
-    const double threshold = options_.threshold;
+    if (!buildCounterIds_) {
+        const size_t count = BuildCounterSources().size();
+        buildCounterIds_ = std::make_unique<std::atomic<CounterId>[]>(count);
+        for (size_t k = 0; k < count; ++k) buildCounterIds_[k].store(-1);
+    }
     if (options_.singleOctree) {
         // The surface lies where some positive term is positive (F = T > 0).
         for (const FieldTerm& t : terms_) {
             if (t.weight > 0) bounds_.Extend(TermSupportBounds(t));
         }
-        trees_.emplace_back(whole_, threshold, bounds_, options_.octree);
+        trees_ = std::make_unique<LazyTree[]>(1);
         return;
     }
     patches_ = BuildPatches(terms_, options_.blendMode, options_.blendPairs);
-    trees_.reserve(patches_.size());
-    for (const Patch& p : patches_) {
-        trees_.push_back(BuildPatchOctree(p, threshold, options_.octree));
-        bounds_.Extend(p.Box());
-    }
+    trees_ = std::make_unique<LazyTree[]>(patches_.size());
+    for (const Patch& p : patches_) bounds_.Extend(p.Box());
     bvh_.clear();
     bvhOrder_.resize(patches_.size());
     for (size_t i = 0; i < patches_.size(); ++i) bvhOrder_[i] = static_cast<int>(i);
@@ -455,21 +517,26 @@ bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
                                 PrimitiveHit& hit) const {
     const FieldCounters& field = FieldCounterIds();
     const CounterId ridders = RiddersIterationCounter();
+    const BuildTally built = buildTally;
     const uint64_t values = ThreadCount(field.values), gradients = ThreadCount(field.gradients),
                    bounds = ThreadCount(field.bounds), iterations = ThreadCount(ridders);
     const bool found = Search(ray, tMin, tMax, hit);
     Count(counters_.tests);
     if (found) Count(counters_.hits);
-    Count(counters_.values, ThreadCount(field.values) - values);
-    Count(counters_.gradients, ThreadCount(field.gradients) - gradients);
-    Count(counters_.bounds, ThreadCount(field.bounds) - bounds);
-    Count(counters_.riddersIterations, ThreadCount(ridders) - iterations);
+    // Less whatever lazy tree builds (BuildTree) counted during this call.
+    Count(counters_.values, ThreadCount(field.values) - values - (buildTally.values - built.values));
+    Count(counters_.gradients, ThreadCount(field.gradients) - gradients -
+                                   (buildTally.gradients - built.gradients));
+    Count(counters_.bounds, ThreadCount(field.bounds) - bounds - (buildTally.bounds - built.bounds));
+    Count(counters_.riddersIterations,
+          ThreadCount(ridders) - iterations -
+              (buildTally.riddersIterations - built.riddersIterations));
     return found;
 }
 
 bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const {
     if (options_.singleOctree) {
-        std::optional<double> t = trees_.front().FirstRoot(ray, tMin, tMax);
+        std::optional<double> t = Tree(0).FirstRoot(ray, tMin, tMax);
         if (!t) return false;
         hit.t = *t;
         hit.part = -1;
@@ -490,7 +557,7 @@ bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, Primitive
             for (int i = node.first; i < node.first + node.count; ++i) {
                 int patch = bvhOrder_[i];
                 std::optional<double> t =
-                    PatchFirstRoot(patches_[patch], trees_[patch], ray, tMin, best);
+                    PatchFirstRoot(patches_[patch], Tree(patch), ray, tMin, best);
                 if (t) {
                     best = *t;
                     hit.part = patch;

@@ -31,10 +31,17 @@
 // building (all summed over rebuilds), and per Intersect call the rays tested, hits, field,
 // gradient and bound evaluations and Ridders iterations. Intersect attributes the module's
 // thread-local counters by differences (libcommon/stats.h ThreadCount): no locks.
+// Octrees are built lazily, by the first ray reaching each one (patches no ray reaches
+// cost nothing): their build figures, preprocessing time included, are attributed the same
+// way by the building thread and excluded from that ray's evaluation counts, so the
+// preprocessing time is build CPU time summed over threads, part of the rendering time.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,6 +70,10 @@ struct ImplicitOptions {
     BlendMode blendMode = BlendMode::Automatic;
     std::vector<std::pair<int, int>> blendPairs;  // term indices, Explicit mode only
 };
+
+// The field, gradient and bound evaluations this thread has made inside lazy octree builds
+// so far; callers counting a ray's evaluations by ThreadCount differences subtract it.
+uint64_t ImplicitBuildEvaluations();
 
 class ImplicitSurface final : public Primitive {
   public:
@@ -116,8 +127,19 @@ class ImplicitSurface final : public Primitive {
         CounterId buildMicroseconds, cells, memoryBytes;
     };
 
+    // A tree built on first use: patch trees are built by the first ray that reaches the
+    // patch (on whichever render thread), the rest never. The tree depends only on the
+    // patch, so images do not depend on which thread builds it.
+    struct LazyTree {
+        std::once_flag once;
+        std::optional<LGOctree> tree;
+    };
+
     void Build();
     void BuildStructures();
+    // Tree `i` (patch i, or the single octree at 0), building it on first use. Thread-safe.
+    const LGOctree& Tree(int i) const;
+    void BuildTree(int i) const;
     // Intersect without the per-object counting.
     bool Search(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const;
     void BuildBvh(int index, int first, int count);
@@ -129,7 +151,12 @@ class ImplicitSurface final : public Primitive {
     // Rebuilds the terms for a time (set when any parameter is animated).
     std::function<std::vector<FieldTerm>(double)> termsAt_;
     std::vector<Patch> patches_;
-    std::vector<LGOctree> trees_;  // one per patch, or the single octree
+    // One per patch, or the single octree; built lazily (Tree). The array is replaced only
+    // by Build, outside rendering.
+    std::unique_ptr<LazyTree[]> trees_;
+    // Per-object counters fed by lazy builds ("<label>: octree ...", "preprocessing ..."),
+    // registered on first use; index as BuildCounterSources(), -1 until registered.
+    std::unique_ptr<std::atomic<CounterId>[]> buildCounterIds_;
     Field whole_;                   // the plain sum (normals in single-octree mode)
     Bounds3 bounds_;
     std::vector<BvhNode> bvh_;  // root at 0 when there are patches

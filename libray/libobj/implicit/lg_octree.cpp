@@ -219,6 +219,7 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
       settings_(settings) {
     if (box_.IsEmpty()) return;
     root_ = Build(box_, 0);
+    std::vector<TermValueRange>().swap(termRanges_);
     if (degraded_) {
         Report(Severity::Warn, {},
                "implicit octree: memory budget of %zu bytes reached; some cells stop above "
@@ -233,14 +234,11 @@ std::size_t LGOctree::MemoryBytes() const {
 
 // False when some other term's smallest value over the box exceeds the own term's largest
 // (strictly, so even a tie won by the lower index is impossible).
-bool LGOctree::OwnMayPredominate(const Bounds3& box) const {
-    double ownLo, ownHi;
-    field_.TermRange(ownTerm_, box, ownLo, ownHi);
+// `ranges` holds every term's value range over the box (Field::Bound).
+bool LGOctree::OwnMayPredominate(const std::vector<TermValueRange>& ranges) const {
+    const double ownHi = ranges[ownTerm_].hi;
     for (int j = 0; j < field_.Size(); ++j) {
-        if (j == ownTerm_) continue;
-        double lo, hi;
-        field_.TermRange(j, box, lo, hi);
-        if (lo > ownHi) return false;
+        if (j != ownTerm_ && ranges[j].lo > ownHi) return false;
     }
     return true;
 }
@@ -254,7 +252,8 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth) {
     const OctreeCounters& c = Counters();
     Count(c.cellsBuilt);
     const OctreeSettings& s = settings_;
-    FieldBound fb = field_.Bound(box);
+    const bool predominance = s.usePredominancePruning && ownTerm_ >= 0;
+    FieldBound fb = predominance ? field_.Bound(box, termRanges_) : field_.Bound(box);
     if (s.useValueRange) {
         if (fb.valueMin > threshold_) {
             Count(c.rangeFired);
@@ -265,7 +264,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth) {
             return kEmptyRef;
         }
     }
-    if (s.usePredominancePruning && ownTerm_ >= 0 && !OwnMayPredominate(box)) {
+    if (predominance && !OwnMayPredominate(termRanges_)) {
         Count(c.patchFired);
         return kEmptyRef;
     }

@@ -170,7 +170,7 @@ class LGOctree {
     };
 
     Ref Build(const Bounds3& box, int depth);
-    bool OwnMayPredominate(const Bounds3& box) const;
+    bool OwnMayPredominate(const std::vector<TermValueRange>& ranges) const;
     Ref MakeLeaf(double L, double G);
     bool Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
                const std::function<bool(const LeafSpan&)>& visit) const;
@@ -184,6 +184,7 @@ class LGOctree {
     std::vector<Leaf> leaves_;
     Ref root_ = kEmptyRef;
     bool degraded_ = false;
+    std::vector<TermValueRange> termRanges_;  // build scratch (Build's predominance test)
 };
 
 // The statistics counter of Ridders iterations (every octree search counts into it), so

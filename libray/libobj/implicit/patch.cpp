@@ -1,6 +1,9 @@
 #include "libobj/implicit/patch.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 
 namespace rs {
 
@@ -37,25 +40,76 @@ bool Patch::Predominates(const Vec3& p) const {
 
 std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode mode,
                                 const std::vector<std::pair<int, int>>& blendPairs) {
-    int n = static_cast<int>(terms.size());
+    const int n = static_cast<int>(terms.size());
     std::vector<Bounds3> support(n);
     for (int i = 0; i < n; ++i) support[i] = TermSupportBounds(terms[i]);
-    std::vector<std::vector<bool>> blends;
+    // Candidate neighbours: in Explicit mode the declared partners, otherwise every term
+    // whose support box overlaps (found through a uniform grid, below).
+    std::vector<std::vector<int>> candidates(n);
     if (mode == BlendMode::Explicit) {
-        blends.assign(n, std::vector<bool>(n, false));
         for (auto [a, b] : blendPairs) {
             if (a < 0 || b < 0 || a >= n || b >= n || a == b) continue;
-            blends[a][b] = blends[b][a] = true;
+            candidates[a].push_back(b);
+            candidates[b].push_back(a);
+        }
+    } else {
+        // Grid of cell edge W per axis, W the largest support extent along that axis, each
+        // box filed under the cell of its low corner. Two boxes overlap only if their low
+        // corners differ by at most W per axis, i.e. their cells are equal or adjacent, so
+        // the 27 cells around a box's own hold every box it may overlap. Cost O(n·k) for k
+        // boxes per cell neighbourhood, instead of testing all n² pairs.
+        const double inf = std::numeric_limits<double>::infinity();
+        Vec3 width{0, 0, 0}, origin{inf, inf, inf};
+        for (const Bounds3& b : support) {
+            if (b.IsEmpty()) continue;
+            width = Max(width, b.hi - b.lo);
+            origin = Min(origin, b.lo);
+        }
+        auto cellOf = [&](const Vec3& p) {
+            std::array<long long, 3> c{};
+            for (int a = 0; a < 3; ++a) {
+                c[a] = width[a] > 0 ? static_cast<long long>(std::floor((p[a] - origin[a]) /
+                                                                         width[a]))
+                                    : 0;
+            }
+            return c;
+        };
+        std::vector<std::pair<std::array<long long, 3>, int>> cells;
+        cells.reserve(n);
+        for (int i = 0; i < n; ++i) {
+            if (!support[i].IsEmpty()) cells.emplace_back(cellOf(support[i].lo), i);
+        }
+        std::sort(cells.begin(), cells.end());
+        for (int i = 0; i < n; ++i) {
+            if (!(terms[i].weight > 0) || support[i].IsEmpty()) continue;
+            const std::array<long long, 3> c = cellOf(support[i].lo);
+            for (long long dx = -1; dx <= 1; ++dx) {
+                for (long long dy = -1; dy <= 1; ++dy) {
+                    for (long long dz = -1; dz <= 1; ++dz) {
+                        std::array<long long, 3> key{c[0] + dx, c[1] + dy, c[2] + dz};
+                        auto lo = std::lower_bound(
+                            cells.begin(), cells.end(), key,
+                            [](const auto& e, const std::array<long long, 3>& k) {
+                                return e.first < k;
+                            });
+                        for (auto it = lo; it != cells.end() && it->first == key; ++it) {
+                            candidates[i].push_back(it->second);
+                        }
+                    }
+                }
+            }
         }
     }
     std::vector<Patch> patches;
     for (int i = 0; i < n; ++i) {
         if (!(terms[i].weight > 0)) continue;
+        // Neighbours in increasing term order (the order of the patch field's sum).
+        std::vector<int>& c = candidates[i];
+        std::sort(c.begin(), c.end());
+        c.erase(std::unique(c.begin(), c.end()), c.end());
         std::vector<int> members{i};
-        for (int j = 0; j < n; ++j) {
-            if (j == i || !BoxesOverlap(support[i], support[j])) continue;
-            if (mode == BlendMode::Explicit && !blends[i][j]) continue;
-            members.push_back(j);
+        for (int j : c) {
+            if (j != i && BoxesOverlap(support[i], support[j])) members.push_back(j);
         }
         patches.emplace_back(terms, std::move(members));
     }

@@ -196,15 +196,23 @@ double BoxBoxDistance(const Bounds3& a, const Bounds3& b) {
 }
 
 DistanceRange SkeletonDistanceRange(const Skeleton& skeleton, const Bounds3& box) {
+    DistanceRange r;
+    if (const auto* pt = std::get_if<PointSkeleton>(&skeleton)) {
+        // Exact: the nearest point of the box, and the farthest corner, which takes the
+        // farther face on each axis (the same sums as the largest of the eight corner
+        // distances, computed once).
+        r.min = PointBoxDistance(pt->center, box);
+        const Vec3& p = pt->center;
+        Vec3 far{std::max(std::abs(p.x - box.lo.x), std::abs(p.x - box.hi.x)),
+                 std::max(std::abs(p.y - box.lo.y), std::abs(p.y - box.hi.y)),
+                 std::max(std::abs(p.z - box.lo.z), std::abs(p.z - box.hi.z))};
+        r.max = std::max(Length(far), r.min);
+        return r;
+    }
     Vec3 c = box.Center();
     double b = HalfDiagonal(box);
     double dc = SkeletonDistance(skeleton, c);
-    DistanceRange r;
-    if (const auto* pt = std::get_if<PointSkeleton>(&skeleton)) {
-        r.min = PointBoxDistance(pt->center, box);
-    } else {
-        r.min = std::max({0.0, dc - b, BoxBoxDistance(box, SkeletonBounds(skeleton))});
-    }
+    r.min = std::max({0.0, dc - b, BoxBoxDistance(box, SkeletonBounds(skeleton))});
     if (IsConvexKind(skeleton)) {
         r.max = MaxCornerDistance(skeleton, box);
     } else if (const auto* poly = std::get_if<PolylineSkeleton>(&skeleton)) {
