@@ -218,8 +218,9 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
       box_(box),
       settings_(settings) {
     if (box_.IsEmpty()) return;
-    root_ = Build(box_, 0);
+    root_ = Build(box_, 0, {0, 0, 0});
     std::vector<TermValueRange>().swap(termRanges_);
+    std::unordered_map<uint64_t, double>().swap(latticeValues_);
     if (degraded_) {
         Report(Severity::Warn, {},
                "implicit octree: memory budget of %zu bytes reached; some cells stop above "
@@ -248,7 +249,14 @@ LGOctree::Ref LGOctree::MakeLeaf(double L, double G) {
     return kFirstLeafRef - static_cast<Ref>(leaves_.size() - 1);
 }
 
-LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth) {
+double LGOctree::LatticeValue(const Vec3& p, LatticePoint q) {
+    const uint64_t key = (uint64_t{q.x} << 42) | (uint64_t{q.y} << 21) | uint64_t{q.z};
+    auto [it, inserted] = latticeValues_.try_emplace(key, 0.0);
+    if (inserted) it->second = field_.Value(p);
+    return it->second;
+}
+
+LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     const OctreeCounters& c = Counters();
     Count(c.cellsBuilt);
     const OctreeSettings& s = settings_;
@@ -270,7 +278,9 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth) {
     }
     Vec3 centre = box.Center();
     double b = HalfDiagonal(box);
-    double gc = field_.Value(centre) - threshold_;
+    // The cell's edge in lattice steps (>= 2 down to maxDepth), and its centre's point.
+    const uint32_t edge = 1u << (s.maxDepth + 1 - depth), half = edge / 2;
+    double gc = LatticeValue(centre, {low.x + half, low.y + half, low.z + half}) - threshold_;
     Ref mark = gc > 0 ? kFullRef : kEmptyRef;
     if (s.useHeuristic1 && std::abs(gc) > b * fb.L) {
         Count(c.h1Fired);
@@ -293,7 +303,9 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth) {
         if (s.useHeuristic3) {
             bool anyIn = gc > 0, anyOut = gc <= 0;
             for (int i = 0; i < 8 && !(anyIn && anyOut); ++i) {
-                bool in = field_.Value(box.Corner(i)) > threshold_;
+                LatticePoint q{low.x + ((i & 1) ? edge : 0), low.y + ((i & 2) ? edge : 0),
+                               low.z + ((i & 4) ? edge : 0)};
+                bool in = LatticeValue(box.Corner(i), q) > threshold_;
                 anyIn |= in;
                 anyOut |= !in;
             }
@@ -316,7 +328,11 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth) {
     // release them by truncating both arrays (stack-like allocation).
     std::size_t internalMark = internals_.size(), leafMark = leaves_.size();
     Internal node;
-    for (int i = 0; i < 8; ++i) node.child[i] = Build(ChildBox(box, i), depth + 1);
+    for (int i = 0; i < 8; ++i) {
+        LatticePoint q{low.x + ((i & 1) ? half : 0), low.y + ((i & 2) ? half : 0),
+                       low.z + ((i & 4) ? half : 0)};
+        node.child[i] = Build(ChildBox(box, i), depth + 1, q);
+    }
     bool allEmpty = true, allFull = true, allLeaves = true;
     double maxChildG = 0;
     for (Ref r : node.child) {

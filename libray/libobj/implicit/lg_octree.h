@@ -65,6 +65,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "libcommon/limits.h"
@@ -169,7 +170,17 @@ class LGOctree {
         double L, G;
     };
 
-    Ref Build(const Bounds3& box, int depth);
+    // A cell's low corner on the lattice of corners and centres of the deepest cells: the
+    // root spans 2^(maxDepth + 1) steps per axis (at most 2^17, so each index fits 21 bits).
+    struct LatticePoint {
+        uint32_t x, y, z;
+    };
+    Ref Build(const Bounds3& box, int depth, LatticePoint low);
+    // F at a lattice point (p its coordinates), evaluated once per build: neighbouring cells
+    // share corners, and a cell's centre is its children's shared corner. Every cell derives
+    // a given lattice point's coordinates by the same midpoint operations, so the cached
+    // value is exactly what a fresh evaluation would return.
+    double LatticeValue(const Vec3& p, LatticePoint q);
     bool OwnMayPredominate(const std::vector<TermValueRange>& ranges) const;
     Ref MakeLeaf(double L, double G);
     bool Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
@@ -185,6 +196,7 @@ class LGOctree {
     Ref root_ = kEmptyRef;
     bool degraded_ = false;
     std::vector<TermValueRange> termRanges_;  // build scratch (Build's predominance test)
+    std::unordered_map<uint64_t, double> latticeValues_;  // build scratch (LatticeValue)
 };
 
 // The statistics counter of Ridders iterations (every octree search counts into it), so
