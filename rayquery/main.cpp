@@ -1,7 +1,9 @@
 // rayquery: first hits of world-space rays against a scene (see README.md in this folder).
-//   rayquery [-m METHOD] [-v] SCENE.ray < rays.txt
+//   rayquery [-m METHOD] [-f SPREAD [WIDTH]] [-v] SCENE.ray < rays.txt
 #include <atomic>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -16,15 +18,19 @@ namespace {
 
 
 constexpr const char* kUsage =
-    "usage: rayquery [-m patches|kb89] [-v] SCENE.ray < rays.txt\n"
+    "usage: rayquery [-m patches|kb89] [-f SPREAD [WIDTH]] [-v] SCENE.ray < rays.txt\n"
     "  each input line: ox oy oz dx dy dz [tmin [tmax]]   (world space; default tmin 0,\n"
     "                   tmax 1e14; t in units of the given direction; '#' lines skipped)\n"
     "  each output line: hit T PX PY PZ NX NY NZ OBJECT PATCH EVALS  |  miss EVALS\n"
     "  -m METHOD  intersection method of every implicit object\n"
+    "  -f SPREAD [WIDTH]  every ray carries a footprint: WIDTH (default 0) at its origin,\n"
+    "             growing by SPREAD per unit of distance (world units); `tolerance auto`\n"
+    "             then picks the root accuracy from it, as for rendered rays\n"
     "  -v         print the statistics counters to standard error at the end\n";
 
 int Run(int argc, char** argv) {
     bool verbose = false, overrideMethod = false;
+    double spread = 0, width = 0;  // -f: the footprint in world units (ray.h)
     rs::ImplicitMethod method = rs::ImplicitMethod::Patches;
     std::string sceneFile;
     for (int i = 1; i < argc; ++i) {
@@ -36,6 +42,19 @@ int Run(int argc, char** argv) {
             }
             overrideMethod = true;
             ++i;
+        } else if (arg == "-f") {
+            auto number = [&](int at, double& value) {
+                char* end = nullptr;
+                if (at >= argc) return false;
+                value = std::strtod(argv[at], &end);
+                return end != argv[at] && *end == '\0' && std::isfinite(value) && value >= 0;
+            };
+            if (!number(i + 1, spread)) {
+                std::fprintf(stderr, "rayquery: -f needs a spread >= 0\n%s", kUsage);
+                return 1;
+            }
+            ++i;
+            if (number(i + 1, width)) ++i;
         } else if (arg == "-v") {
             verbose = true;
         } else if (arg == "-h" || arg == "--help") {
@@ -77,6 +96,9 @@ int Run(int argc, char** argv) {
             return 1;
         }
         query.ray.time = time;
+        // In units of t (ray.h): a world width divided by |d|; the spread is a ratio.
+        query.ray.footprintWidth = width / rs::Length(query.ray.dir);
+        query.ray.footprintSpread = spread;
         std::string out = rs::FormatQueryResult(rs::RunQuery(*scene.world, query));
         std::fputs(out.c_str(), stdout);
         std::fputc('\n', stdout);

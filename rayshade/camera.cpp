@@ -1,5 +1,6 @@
 #include "rayshade/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "libcommon/constants.h"
@@ -35,6 +36,7 @@ CameraSetup::CameraSetup(const Camera& camera, const RenderOptions& options) {
     // The original derives vfov linearly (spec §3.2, kept for compatibility).
     double vfov = camera.vfov > 0 ? camera.vfov : hfov * options.yres / options.xres;
     Vec3 d = gaze * dist;
+    screenDist_ = dist;
     dx_ = right_ * (2 * dist * std::tan(hfov * kPi / 360) / options.xres);
     dy_ = -up_ * (2 * dist * std::tan(vfov * kPi / 360) / options.yres);
     corner_ = d - dx_ * (options.xres / 2.0) - dy_ * (options.yres / 2.0);
@@ -44,12 +46,25 @@ CameraSetup::CameraSetup(const Camera& camera, const RenderOptions& options) {
 }
 
 Ray CameraSetup::EyeRay(double sx, double sy, double lensX, double lensY, double time) const {
-    Vec3 dir = Normalize(corner_ + dx_ * sx + dy_ * sy);
-    if (aperture_ <= 0) return {eye_, dir, time};
-    // Thin lens: aim from a point of the (square) lens at the pinhole ray's point on the
-    // focal plane.
-    Vec3 offset = (right_ * lensX + up_ * lensY) * aperture_;
-    return {eye_ + offset, Normalize(dir * focalDist_ - offset), time};
+    const Vec3 toScreen = corner_ + dx_ * sx + dy_ * sy;
+    Vec3 dir = Normalize(toScreen);
+    Ray ray{eye_, dir, time};
+    if (aperture_ > 0) {
+        // Thin lens: aim from a point of the (square) lens at the pinhole ray's point on the
+        // focal plane.
+        Vec3 offset = (right_ * lensX + up_ * lensY) * aperture_;
+        ray = {eye_ + offset, Normalize(dir * focalDist_ - offset), time};
+    }
+    // Footprint (ray.h): the pixel seen from the eye. At the screen point, at distance
+    // ℓ = |toScreen| from the eye, a pixel spans |dx| by |dy|, foreshortened across the ray
+    // by cos θ = screenDist/ℓ at most; so the beam widens by at least
+    // min(|dx|, |dy|)·cos θ/ℓ per unit of distance, from 0 at a pinhole. (With a lens the
+    // beam of one lens sample is the same pixel cone, through the focal point.)
+    const double ell = Length(toScreen);
+    if (ell > 0) {
+        ray.footprintSpread = std::min(Length(dx_), Length(dy_)) * screenDist_ / (ell * ell);
+    }
+    return ray;
 }
 
 }  // namespace rs

@@ -15,7 +15,8 @@ class CameraSetup {
     CameraSetup(const Camera& camera, const RenderOptions& options);
 
     // The eye ray through screen point (sx, sy); (lensX, lensY) ∈ [−1,1]² is the square-lens
-    // sample, ignored for a pinhole camera. The direction is unit length.
+    // sample, ignored for a pinhole camera. The direction is unit length; the footprint
+    // (ray.h) is the pixel's: width 0 at the eye, spread the pixel's angular size.
     Ray EyeRay(double sx, double sy, double lensX, double lensY, double time) const;
 
     bool HasAperture() const { return aperture_ > 0; }
@@ -25,6 +26,7 @@ class CameraSetup {
     Vec3 right_, up_;     // r̂, û
     Vec3 corner_;         // F0: direction from the eye to the screen's top-left corner
     Vec3 dx_, dy_;        // one pixel along x and (downward) along y
+    double screenDist_ = 1;  // distance from the eye to the screen centre (|gaze·dist|)
     double aperture_ = 0;
     double focalDist_ = 1;
 };

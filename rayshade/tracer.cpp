@@ -179,6 +179,17 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
 
     Color c = s.ambient * scene_.ambientLight;
     const Vec3 mirror = ray.dir + n * (2 * -Dot(ray.dir, n));
+    // The beam's width at the hit (ray.h). Spawned rays start with it; reflected and
+    // refracted rays keep the incoming spread (exact for flat interfaces, finer than the
+    // true beam for convex ones, coarser only near the focus of a concave one), and shadow
+    // rays narrow to a point at the light.
+    const double width = ray.footprintWidth + ray.footprintSpread * hit.t();
+    auto spawned = [&](const Vec3& dir) {
+        Ray r{sp.point, dir, ray.time};
+        r.footprintWidth = width;
+        r.footprintSpread = ray.footprintSpread;
+        return r;
+    };
 
     // Lights are evaluated in reverse order of definition, as the original stores them.
     for (auto it = scene_.lights.rbegin(); it != scene_.lights.rend(); ++it) {
@@ -193,7 +204,7 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
         if (cosTheta > 0) {
             Color li = noShadow ? ls.color
                                 : LightThroughShadows(sp.point, ray.time, ls.color, ls.shadowDir,
-                                                      ls.shadowDist, sample);
+                                                      ls.shadowDist, width, sample);
             if (li == Color{}) continue;
             c += s.diffuse * li * cosTheta;
             double cosAlpha = Dot(mirror, ls.shadeDir);
@@ -205,7 +216,7 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
             // intended behaviour (no shipped scene uses translucency).
             Color li = noShadow ? ls.color
                                 : LightThroughShadows(sp.point, ray.time, ls.color, ls.shadowDir,
-                                                      ls.shadowDist, sample);
+                                                      ls.shadowDist, width, sample);
             if (li == Color{}) continue;
             Color share = s.translucentColor * li * (-cosTheta);
             double cosAlpha = -Dot(mirror, ls.shadeDir);
@@ -240,7 +251,7 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
                 Count(kRefractedRays);
                 double dist = 0;
                 bool hitAny = false;
-                Color t = Trace({sp.point, dir, ray.time}, depth + 1, weight * transmitWeight,
+                Color t = Trace(spawned(dir), depth + 1, weight * transmitWeight,
                                 inner, sample, dist, hitAny);
                 double fade = extinct == 1.0 ? 1.0 : std::pow(extinct, dist);
                 c += transmitWeight * t * fade;
@@ -253,16 +264,19 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
         Count(kReflectedRays);
         double dist = 0;
         bool hitAny = false;
-        c += reflectWeight * Trace({sp.point, mirror, ray.time}, depth + 1, weight * reflectWeight,
+        c += reflectWeight * Trace(spawned(mirror), depth + 1, weight * reflectWeight,
                                    media, sample, dist, hitAny);
     }
     return c;
 }
 
 Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light,
-                                  const Vec3& dir, double dist, SampleState& sample) const {
+                                  const Vec3& dir, double dist, double footprint,
+                                  SampleState& sample) const {
     Count(kShadowRays);
-    const Ray ray{p, dir, time};
+    Ray ray{p, dir, time};
+    ray.footprintWidth = footprint;
+    ray.footprintSpread = std::isfinite(dist) && dist > 0 ? -footprint / dist : 0;
     Color c = light;
     double tMin = kShadowEpsilon;
     bool previousEntering = false;

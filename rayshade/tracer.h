@@ -53,8 +53,10 @@ class Tracer {
     Color Shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
                 MediumStack& media, SampleState& sample) const;
     // Light arriving at `p` from a light sample after occluders (black when blocked).
+    // `footprint`: the beam's width at p (ray.h); the shadow ray's narrows to 0 at the light.
     Color LightThroughShadows(const Vec3& p, double time, const Color& light,
-                              const Vec3& dir, double dist, SampleState& sample) const;
+                              const Vec3& dir, double dist, double footprint,
+                              SampleState& sample) const;
     Color Atmosphere(const Ray& ray, double dist, const Color& c) const;
     const Surface& UntexturedSurface(const HitRecord& hit) const;
 

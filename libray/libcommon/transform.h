@@ -72,7 +72,10 @@ class Transform {
     Vec3 InverseNormal(const Vec3& n) const { return forward_.ApplyTransposed(n); }
     // The ray in the source space of this transform; t is preserved (no renormalising).
     Ray InverseRay(const Ray& r) const {
-        return {inverse_.ApplyPoint(r.origin), inverse_.ApplyVector(r.dir), r.time};
+        Ray out = r;  // keeps the time and footprint
+        out.origin = inverse_.ApplyPoint(r.origin);
+        out.dir = inverse_.ApplyVector(r.dir);
+        return out;
     }
     // Conservative image of a box: the box around its 8 transformed corners.
     Bounds3 ApplyBounds(const Bounds3& b) const;

@@ -163,6 +163,9 @@ OctreeSettings MethodSettings(bool singleOctree, const OctreeSettings& declared,
     if (!singleOctree) s.dRatio = patchesDRatio;
     s.tolerance = declared.tolerance;
     s.minWidth = declared.minWidth;
+    s.autoTolerance = declared.autoTolerance;
+    s.footprintFraction = declared.footprintFraction;
+    s.autoToleranceCap = declared.autoToleranceCap;
     return s;
 }
 
@@ -249,6 +252,42 @@ const std::vector<std::pair<CounterId, std::string>>& BuildCounterSources() {
     return sources;
 }
 
+// The radius of the own term's surface alone, {r : w·f(r) = T} (f decreases on [0, R)),
+// or R when the term alone stays below T (its surface then exists only blended with others,
+// hence at least as thick as theirs).
+double LoneThickness(const FieldTerm& term, double threshold) {
+    const double radius = term.kernel.Radius();
+    auto above = [&](double r) { return term.weight * term.kernel.Value(r) > threshold; };
+    if (!above(0)) return radius;
+    double lo = 0, hi = radius;  // above(lo), !above(hi): f(R) = 0 < T / w
+    for (int i = 0; i < 60 && hi - lo > 1e-3 * radius; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (above(mid) ? lo : hi) = mid;
+    }
+    return lo > 0 ? lo : hi;
+}
+
+}  // namespace
+
+// Octree depth `auto`: the "deep enough" depth of heuristics 3 and 3bis (the depth where
+// cells the surface crosses become leaves) is the smallest at which the leaf edge is at
+// most the own skeleton's lone thickness τ (LoneThickness: the radius of its surface
+// alone), i.e. a leaf never spans more than half the thinnest cross-section of the patch's
+// own part, so the leaf's L and G describe one piece of surface rather than a whole
+// feature. minDepth = ceil(log2(longest patch-box edge / τ)), clamped to [2, 8] (depth 8
+// already means 16 million cells in a full tree, and the memory budget still applies);
+// the maximum depth is at least minDepth + 3. A lone point with the blob kernel of the
+// benchmark (R = 1, T = 0.6: τ = 0.47, edge 2) gets 3, Gascuel's setting.
+int ImplicitSurface::AutoMinDepth(const Patch& patch, double threshold) {
+    const double tau = LoneThickness(patch.GetField().Terms().front(), threshold);
+    const Vec3 extent = patch.Box().Extent();
+    const double edge = std::max({extent.x, extent.y, extent.z});
+    if (!(tau > 0) || !(edge > tau)) return 2;
+    return std::clamp(static_cast<int>(std::ceil(std::log2(edge / tau))), 2, 8);
+}
+
+namespace {
+
 // The evaluations this thread made inside lazy builds, so Intersect can leave them out of
 // the ray's own counts.
 struct BuildTally {
@@ -288,7 +327,12 @@ void ImplicitSurface::BuildTree(int i) const {
     if (options_.singleOctree) {
         trees_[i].tree.emplace(whole_, options_.threshold, bounds_, options_.octree);
     } else {
-        trees_[i].tree.emplace(BuildPatchOctree(patches_[i], options_.threshold, options_.octree));
+        OctreeSettings settings = options_.octree;
+        if (options_.autoDepth) {
+            settings.minDepth = AutoMinDepth(patches_[i], options_.threshold);
+            settings.maxDepth = std::min(16, std::max(settings.maxDepth, settings.minDepth + 3));
+        }
+        trees_[i].tree.emplace(BuildPatchOctree(patches_[i], options_.threshold, settings));
     }
     const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
         std::chrono::steady_clock::now() - start);
@@ -376,6 +420,8 @@ void ImplicitSurface::BuildBvh(int index, int first, int count) {
 
 std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     ImplicitOptions options;
+    options.autoDepth = true;
+    bool autoTolerance = true;
     int maxDepth = options.octree.maxDepth;
     double dRatio = options.octree.dRatio, tolerance = options.octree.tolerance;
     KernelSpec defaultKernel = DefaultKernel();
@@ -387,11 +433,17 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             options.threshold = args.ReadNumber();
             if (!(options.threshold > 0)) args.Fail("implicit threshold must be > 0");
         } else if (args.Accept("tolerance")) {
-            tolerance = args.ReadNumber();
-            if (!(tolerance > 0)) args.Fail("implicit tolerance must be > 0");
+            autoTolerance = args.Accept("auto");
+            if (!autoTolerance) {
+                tolerance = args.ReadNumber();
+                if (!(tolerance > 0)) args.Fail("implicit tolerance must be > 0");
+            }
         } else if (args.Accept("octree")) {
-            maxDepth = args.ReadInt();
-            if (maxDepth < 0 || maxDepth > 16) args.Fail("octree depth must be in [0, 16]");
+            options.autoDepth = args.Accept("auto");
+            if (!options.autoDepth) {
+                maxDepth = args.ReadInt();
+                if (maxDepth < 0 || maxDepth > 16) args.Fail("octree depth must be in [0, 16]");
+            }
             if (args.PeekNumber()) dRatio = args.ReadNumber();
         } else if (args.Accept("method")) {
             if (args.Accept("patches")) {
@@ -470,6 +522,7 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     declared.maxDepth = maxDepth;
     declared.tolerance = tolerance;
     declared.minWidth = tolerance;
+    declared.autoTolerance = autoTolerance;
     options.patchesDRatio = dRatio;
     options.octree = MethodSettings(options.singleOctree, declared, dRatio);
 

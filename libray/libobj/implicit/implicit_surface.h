@@ -3,8 +3,13 @@
 //
 // Scene syntax, after `implicit [surface]`, until `end` (see README.md in this folder):
 //   threshold T            iso-value (default 1; must be > 0). Inside: F > T.
-//   tolerance Eps          root accuracy in object-space distance (default 1e-7)
-//   octree MaxDepth [Dratio]   octree depth limit (default 6) and Gascuel's Dratio (2)
+//   tolerance auto|Eps     root accuracy. auto (default): an eighth of the ray's footprint
+//                          (ray.h; the pixel's width at the hit for rendered rays), and
+//                          1e-7 in object-space distance on rays without one; Eps: fixed,
+//                          in object-space distance
+//   octree auto|MaxDepth [Dratio]   octree depth: auto (default) from each skeleton's
+//                          thickness (AutoMinDepth), or the depth limit (then 6 down to
+//                          minimum depth 3); and Gascuel's Dratio (2)
 //   method patches|kb89    patches (default): one LG octree per implicit patch, improved
 //                          heuristics; kb89: one octree over the whole sum with Kalra &
 //                          Barr's heuristics only (blend statements are then ignored)
@@ -64,6 +69,9 @@ struct ImplicitOptions {
     OctreeSettings octree;
     // Gascuel's Dratio as declared, restored when the method becomes Patches again.
     double patchesDRatio = 2;
+    // `octree auto` (the scene default): each patch's octree depth from its own skeleton's
+    // thickness (ImplicitSurface::AutoMinDepth); otherwise octree.minDepth and maxDepth.
+    bool autoDepth = false;
     // One octree over the plain sum instead of patches (the "kb89" method).
     bool singleOctree = false;
     // The declared blend graph; used only in patches mode.
@@ -140,6 +148,8 @@ class ImplicitSurface final : public Primitive {
     // Tree `i` (patch i, or the single octree at 0), building it on first use. Thread-safe.
     const LGOctree& Tree(int i) const;
     void BuildTree(int i) const;
+    // The depth of heuristics 3 and 3bis for a patch under `octree auto` (see the .cpp).
+    static int AutoMinDepth(const Patch& patch, double threshold);
     // Intersect without the per-object counting.
     bool Search(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const;
     void BuildBvh(int index, int first, int count);

@@ -76,8 +76,11 @@ class RaySearch {
           tMax_(tMax),
           accept_(accept),
           dirLength_(Length(ray.dir)),
-          tolT_(s_.tolerance / dirLength_),
-          floorT_(std::max(s_.minWidth, s_.tolerance) / dirLength_) {}
+          fixedTolT_(s_.tolerance / dirLength_),
+          fixedFloorT_(std::max(s_.minWidth, s_.tolerance) / dirLength_),
+          adaptive_(s_.autoTolerance && (ray.footprintWidth != 0 || ray.footprintSpread != 0)),
+          tolT_(fixedTolT_),
+          floorT_(fixedFloorT_) {}
 
     double G(double t) const { return tree_.GetField().Value(ray_.At(t)) - tree_.Threshold(); }
 
@@ -86,6 +89,14 @@ class RaySearch {
         Count(Counters().cellsVisited);
         double a = span.tEnter, b = span.tExit;
         if (!(b >= a)) return false;
+        if (adaptive_) {
+            // The footprint is affine in t, so its smaller end value is its minimum here.
+            const double width = std::min(ray_.footprintWidth + ray_.footprintSpread * a,
+                                          ray_.footprintWidth + ray_.footprintSpread * b);
+            const double tol = std::min(s_.footprintFraction * width, s_.autoToleranceCap);
+            tolT_ = std::max(tol, fixedTolT_);
+            floorT_ = std::max(tol, fixedFloorT_);
+        }
         double ga = a == cachedT_ ? cachedG_ : G(a);
         double gb = G(b);
         cachedT_ = b;
@@ -190,7 +201,10 @@ class RaySearch {
     Ray ray_;
     double tMin_, tMax_;
     const std::function<bool(double)>& accept_;
-    double dirLength_, tolT_, floorT_;
+    double dirLength_;
+    double fixedTolT_, fixedFloorT_;  // the fixed tolerance and floor, in units of t
+    bool adaptive_;                   // automatic accuracy on a ray with a footprint
+    double tolT_, floorT_;            // those of the current leaf span
     double cachedT_ = std::nan(""), cachedG_ = 0;
 };
 

@@ -5,8 +5,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "libobj/blob.h"
@@ -278,6 +281,91 @@ TEST(ImplicitSurface, ExampleRingEndsDoNotBlend) {
     auto t = Hit(*ring, {{0, -5, 0.5724}, {0, 1, 0}});
     ASSERT_TRUE(t.has_value());
     EXPECT_NEAR(*t, 5 - std::sqrt(0.42 * 0.42 - 0.4104 * 0.4104), 1e-6);
+}
+
+// The lone blob sphere of the benchmark kernel: s(1 − r²/R²)² = T at r = R·sqrt(1 − sqrt(T/s)).
+constexpr const char* kBlobSphere = "threshold 0.6 field blob 1 1 point a 0 0 0 end";
+const double kBlobRadius = std::sqrt(1 - std::sqrt(0.6));
+
+// Rays along +z from z = −5 at seeded offsets inside the sphere's silhouette, with their
+// analytic first root.
+std::vector<std::pair<Ray, double>> SphereRays(int count, double radius) {
+    std::mt19937 rng(4242);
+    std::uniform_real_distribution<double> u(-0.9 * radius, 0.9 * radius);
+    std::vector<std::pair<Ray, double>> rays;
+    while (static_cast<int>(rays.size()) < count) {
+        double x = u(rng), y = u(rng);
+        if (x * x + y * y > 0.81 * radius * radius) continue;
+        rays.push_back({Ray{{x, y, -5}, {0, 0, 1}}, 5 - std::sqrt(radius * radius - x * x - y * y)});
+    }
+    return rays;
+}
+
+TEST(ImplicitSurface, AutoToleranceIsAnEighthOfTheFootprint) {
+    auto p = Parse(kBlobSphere);  // tolerance auto is the default
+    ASSERT_TRUE(p);
+    // Footprints of 0.002 + 0.01t and 1e-6 + 1e-7t: the first is capped at 1e-6 (a tenth of
+    // the renderer's spawn offset), the second sets 1.25e-7 + 1.25e-8t.
+    for (auto [width, spread] : {std::pair{0.002, 0.01}, std::pair{1e-6, 1e-7}}) {
+        for (auto [ray, exact] : SphereRays(100, kBlobRadius)) {
+            auto fixed = Hit(*p, ray);  // no footprint: the fixed 1e-7
+            ASSERT_TRUE(fixed.has_value());
+            EXPECT_NEAR(*fixed, exact, 1e-7);
+            ray.footprintWidth = width;
+            ray.footprintSpread = spread;
+            auto t = Hit(*p, ray);
+            ASSERT_TRUE(t.has_value());
+            const double tolerance = std::min(0.125 * (width + spread * exact), 1e-6);
+            EXPECT_LE(std::abs(*t - exact), tolerance + 1e-12);
+        }
+    }
+}
+
+TEST(ImplicitSurface, ExplicitToleranceIgnoresTheFootprint) {
+    auto p = Parse("threshold 0.6 tolerance 1e-9 octree auto 2 field blob 1 1 point a 0 0 0 end");
+    ASSERT_TRUE(p);
+    for (auto [ray, exact] : SphereRays(50, kBlobRadius)) {
+        ray.footprintSpread = 0.05;
+        auto t = Hit(*p, ray);
+        ASSERT_TRUE(t.has_value());
+        EXPECT_NEAR(*t, exact, 1e-9 + 1e-14);
+    }
+    TokenReader bad("tolerance fine point a 0 0 0 end");
+    EXPECT_THROW(ImplicitSurface::Create(bad), FatalError);
+    EXPECT_TRUE(Parse("octree 5 tolerance auto point a 0 0 0 end"));
+}
+
+// Octrees are built by the first ray reaching each patch, on any thread: concurrent first
+// rays must see the same trees (and hits) as one thread does.
+TEST(ImplicitSurface, LazyTreesGiveTheSameHitsFromManyThreads) {
+    std::string text = "threshold 0.6 field blob 1 1";
+    for (int i = 0; i < 40; ++i) {
+        text += " point p" + std::to_string(i) + " " + std::to_string(0.6 * i) + " " +
+                std::to_string(0.3 * std::sin(i)) + " 0";
+    }
+    text += " end";
+    std::vector<Ray> rays;
+    for (int i = 0; i < 400; ++i) rays.push_back({{0.06 * i, -5, 0.02 * (i % 17)}, {0, 1, 0}});
+    auto serial = Parse(text);
+    std::vector<double> expected;
+    for (const Ray& r : rays) expected.push_back(Hit(*serial, r).value_or(-1));
+    auto shared = Parse(text);
+    std::vector<std::vector<double>> got(4);
+    std::vector<std::thread> threads;
+    for (int k = 0; k < 4; ++k) {
+        threads.emplace_back([&, k] {
+            for (size_t i = 0; i < rays.size(); ++i) {
+                const Ray& r = rays[(i + 97 * k) % rays.size()];
+                got[k].push_back(Hit(*shared, r).value_or(-1));
+            }
+        });
+    }
+    for (std::thread& t : threads) t.join();
+    for (int k = 0; k < 4; ++k) {
+        for (size_t i = 0; i < rays.size(); ++i) {
+            EXPECT_EQ(got[k][i], expected[(i + 97 * k) % rays.size()]) << k << " " << i;
+        }
+    }
 }
 
 }  // namespace

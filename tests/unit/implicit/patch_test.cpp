@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <string>
+
 namespace rs {
 namespace {
 
@@ -60,6 +63,38 @@ TEST(Patch, PatchFieldIsOwnPlusNeighbours) {
     Vec3 p{0.4, 0.1, 0};
     Field all(terms);
     EXPECT_DOUBLE_EQ(patches[0].GetField().Value(p), all.Value(p));
+}
+
+// Property (seeded): the grid-accelerated neighbour search finds exactly the terms whose
+// support boxes overlap, in increasing order, for skeletons of mixed sizes and radii.
+TEST(Patch, AutomaticNeighboursMatchAllPairsOnRandomTerms) {
+    std::mt19937 rng(20261122);
+    std::uniform_real_distribution<double> coord(-6, 6), radius(0.3, 2.5), unit(0, 1);
+    std::vector<FieldTerm> terms;
+    for (int i = 0; i < 150; ++i) {
+        Vec3 a{coord(rng), coord(rng), coord(rng)};
+        FieldTerm t{std::to_string(i), PointSkeleton{a},
+                    Kernel::GascuelQuadratic(0.2, 1, radius(rng)), unit(rng) < 0.1 ? -1.0 : 1.0};
+        if (i % 5 == 0) t.skeleton = SegmentSkeleton{a, a + Vec3{coord(rng), 0, 1} * 0.5};
+        terms.push_back(t);
+    }
+    std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+    size_t next = 0;
+    for (int i = 0; i < static_cast<int>(terms.size()); ++i) {
+        if (!(terms[i].weight > 0)) continue;
+        ASSERT_LT(next, patches.size());
+        std::vector<int> expected{i};
+        const Bounds3 own = TermSupportBounds(terms[i]);
+        for (int j = 0; j < static_cast<int>(terms.size()); ++j) {
+            const Bounds3 other = TermSupportBounds(terms[j]);
+            bool overlap = own.lo.x <= other.hi.x && other.lo.x <= own.hi.x &&
+                           own.lo.y <= other.hi.y && other.lo.y <= own.hi.y &&
+                           own.lo.z <= other.hi.z && other.lo.z <= own.hi.z;
+            if (j != i && overlap) expected.push_back(j);
+        }
+        EXPECT_EQ(patches[next++].Members(), expected) << "term " << i;
+    }
+    EXPECT_EQ(next, patches.size());
 }
 
 }  // namespace

@@ -82,6 +82,21 @@ TEST(Camera, LensRaysConvergeOnTheFocalPlane) {
     }
 }
 
+TEST(Camera, EyeRaysCarryThePixelFootprint) {
+    Camera cam;  // eye 10 from the look point; hfov 90: the screen at distance d is 2d wide
+    cam.hfov = 90;
+    RenderOptions o;
+    o.xres = o.yres = 100;
+    CameraSetup setup(cam, o);
+    Ray centre = setup.EyeRay(50, 50, 0, 0, 0);
+    EXPECT_EQ(centre.footprintWidth, 0);
+    EXPECT_NEAR(centre.footprintSpread, 2.0 / 100, 1e-12);  // pixel 2d/100 seen from d
+    // At the left edge (45° off axis) the pixel is √2 farther and foreshortened by
+    // cos 45°: spread (2d/100)·cos45°/(d√2) = 0.01.
+    Ray edge = setup.EyeRay(0, 50, 0, 0, 0);
+    EXPECT_NEAR(edge.footprintSpread, 0.01, 1e-12);
+}
+
 TEST(Window, CropSelectsFractionOfScreen) {
     RenderOptions o;
     o.xres = 101;
