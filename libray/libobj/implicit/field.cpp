@@ -39,7 +39,10 @@ double Field::Value(const Vec3& p) const {
     for (int i = 0; i < n; ++i) {
         if (!MayReach(i, p)) continue;  // adds exactly 0
         const FieldTerm& t = terms_[i];
-        sum += t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
+        // Points, the commonest skeleton, without the variant dispatch (same arithmetic).
+        const auto* point = std::get_if<PointSkeleton>(&t.skeleton);
+        const double d = point ? Length(p - point->center) : SkeletonDistance(t.skeleton, p);
+        sum += t.weight * t.kernel.Value(d);
     }
     return sum;
 }

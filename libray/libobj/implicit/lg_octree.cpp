@@ -371,17 +371,19 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     return static_cast<Ref>(internals_.size() - 1);
 }
 
+template <class Visitor>
 bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
-                     const std::function<bool(const LeafSpan&)>& visit) const {
+                     Visitor& visit) const {
     if (ref == kEmptyRef || ref == kFullRef) return false;
     if (ref <= kFirstLeafRef) {
         const Leaf& leaf = leaves_[kFirstLeafRef - ref];
-        return visit({t0, t1, leaf.L, leaf.G});
+        return visit(LeafSpan{t0, t1, leaf.L, leaf.G});
     }
     const Internal& node = internals_[ref];
     // Split [t0, t1] where the ray crosses the three mid-planes; each piece lies in one
-    // child, found from the piece's midpoint.
-    Vec3 c = box.Center();
+    // child, found from the piece's midpoint. Empty and Full children are skipped before
+    // their boxes are formed.
+    const Vec3 c = box.Center();
     double cuts[5];
     int n = 0;
     cuts[n++] = t0;
@@ -397,8 +399,16 @@ bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, dou
     for (int i = 0; i + 1 < n; ++i) {
         double a = cuts[i], b = cuts[i + 1];
         if (b <= a && n > 2) continue;
-        int child = ChildIndexOf(box, ray.At(0.5 * (a + b)));
-        if (Visit(node.child[child], ChildBox(box, child), ray, a, b, visit)) return true;
+        const Vec3 p = ray.At(0.5 * (a + b));
+        const int child = (p.x >= c.x ? 1 : 0) | (p.y >= c.y ? 2 : 0) | (p.z >= c.z ? 4 : 0);
+        const Ref next = node.child[child];
+        if (next == kEmptyRef || next == kFullRef) continue;
+        Bounds3 sub;  // ChildBox(box, child), from the centre already at hand
+        sub.lo = {(child & 1) ? c.x : box.lo.x, (child & 2) ? c.y : box.lo.y,
+                  (child & 4) ? c.z : box.lo.z};
+        sub.hi = {(child & 1) ? box.hi.x : c.x, (child & 2) ? box.hi.y : c.y,
+                  (child & 4) ? box.hi.z : c.z};
+        if (Visit(next, sub, ray, a, b, visit)) return true;
     }
     return false;
 }
@@ -429,7 +439,11 @@ std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tM
                                           const std::function<bool(double)>& accept) const {
     if (LengthSquared(ray.dir) == 0 || !(tMax > tMin)) return std::nullopt;
     RaySearch search(*this, ray, tMin, tMax, accept);
-    Traverse(ray, tMin, tMax, [&search](const LeafSpan& span) { return search.Leaf(span); });
+    if (box_.IsEmpty()) return std::nullopt;
+    double t0 = tMin, t1 = tMax;
+    if (!box_.ClipRay(ray, t0, t1)) return std::nullopt;
+    auto leaf = [&search](const LeafSpan& span) { return search.Leaf(span); };
+    Visit(root_, box_, ray, t0, t1, leaf);
     return search.result;
 }
 

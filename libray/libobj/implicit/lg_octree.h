@@ -200,8 +200,11 @@ class LGOctree {
     double LatticeValue(const Vec3& p, LatticePoint q);
     bool OwnMayPredominate(const std::vector<TermValueRange>& ranges) const;
     Ref MakeLeaf(double L, double G);
+    // The leaves below `ref` (cell `box`) met by the ray within [t0, t1], in ray order.
+    // Visitor: bool(const LeafSpan&), true to stop. Defined and used in the .cpp only.
+    template <class Visitor>
     bool Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
-               const std::function<bool(const LeafSpan&)>& visit) const;
+               Visitor& visit) const;
 
     Field field_;
     double threshold_;
