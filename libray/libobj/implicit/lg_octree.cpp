@@ -210,6 +210,80 @@ class RaySearch {
 
 }  // namespace
 
+namespace {
+
+// The lattice values of the tree being built (LGOctree::LatticeValue): an open-addressing
+// table per thread, reused by every build on that thread (a tree is built on one thread,
+// start to end) and emptied in O(1) by advancing a generation stamp.
+class LatticeValueTable {
+  public:
+    void Clear() {
+        if (++stamp_ == 0) {  // wrapped: forget every stamp
+            std::fill(stamps_.begin(), stamps_.end(), 0u);
+            stamp_ = 1;
+        }
+        size_ = 0;
+    }
+    double* Find(uint64_t key) {
+        if (stamps_.empty()) return nullptr;
+        for (size_t i = Hash(key) & mask_;; i = (i + 1) & mask_) {
+            if (stamps_[i] != stamp_) return nullptr;
+            if (keys_[i] == key) return &values_[i];
+        }
+    }
+    // key must be absent.
+    double* Insert(uint64_t key, double value) {
+        if (2 * (size_ + 1) > stamps_.size()) Grow();
+        size_t i = Hash(key) & mask_;
+        while (stamps_[i] == stamp_) i = (i + 1) & mask_;
+        stamps_[i] = stamp_;
+        keys_[i] = key;
+        values_[i] = value;
+        ++size_;
+        return &values_[i];
+    }
+
+  private:
+    static size_t Hash(uint64_t key) {  // a 64-bit mix (splitmix64's finaliser)
+        key ^= key >> 30;
+        key *= 0xbf58476d1ce4e5b9ULL;
+        key ^= key >> 27;
+        key *= 0x94d049bb133111ebULL;
+        key ^= key >> 31;
+        return static_cast<size_t>(key);
+    }
+    void Grow() {
+        std::vector<uint64_t> keys = std::move(keys_);
+        std::vector<double> values = std::move(values_);
+        std::vector<uint32_t> stamps = std::move(stamps_);
+        const size_t capacity = std::max<size_t>(1024, 2 * stamps.size());
+        keys_.assign(capacity, 0);
+        values_.assign(capacity, 0);
+        stamps_.assign(capacity, 0);
+        mask_ = capacity - 1;
+        const uint32_t live = stamp_;
+        stamp_ = 1;
+        size_ = 0;
+        for (size_t i = 0; i < stamps.size(); ++i) {
+            if (stamps[i] == live) Insert(keys[i], values[i]);
+        }
+    }
+
+    std::vector<uint64_t> keys_;
+    std::vector<double> values_;
+    std::vector<uint32_t> stamps_;  // slot i is in use when stamps_[i] == stamp_
+    uint32_t stamp_ = 1;
+    size_t mask_ = 0;
+    size_t size_ = 0;
+};
+
+LatticeValueTable& LatticeTable() {
+    thread_local LatticeValueTable table;
+    return table;
+}
+
+}  // namespace
+
 OctreeSettings OctreeSettings::Kb89() {
     OctreeSettings s;
     s.useValueRange = false;
@@ -232,9 +306,9 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
       box_(box),
       settings_(settings) {
     if (box_.IsEmpty()) return;
+    LatticeTable().Clear();
     root_ = Build(box_, 0, {0, 0, 0});
     std::vector<TermValueRange>().swap(termRanges_);
-    std::unordered_map<uint64_t, double>().swap(latticeValues_);
     if (degraded_) {
         Report(Severity::Warn, {},
                "implicit octree: memory budget of %zu bytes reached; some cells stop above "
@@ -265,9 +339,9 @@ LGOctree::Ref LGOctree::MakeLeaf(double L, double G) {
 
 double LGOctree::LatticeValue(const Vec3& p, LatticePoint q) {
     const uint64_t key = (uint64_t{q.x} << 42) | (uint64_t{q.y} << 21) | uint64_t{q.z};
-    auto [it, inserted] = latticeValues_.try_emplace(key, 0.0);
-    if (inserted) it->second = field_.Value(p);
-    return it->second;
+    double* slot = LatticeTable().Find(key);
+    if (!slot) slot = LatticeTable().Insert(key, field_.Value(p));
+    return *slot;
 }
 
 LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
@@ -300,7 +374,9 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
         Count(c.h1Fired);
         return mark;
     }
-    if (s.useHeuristic1bis && std::isfinite(fb.G)) {
+    // 1bis needs |g(C)| > b‖∇F(C)‖ + ½b²G >= ½b²G: test that first, so the gradient is
+    // evaluated only where the heuristic can fire.
+    if (s.useHeuristic1bis && std::isfinite(fb.G) && std::abs(gc) > 0.5 * b * b * fb.G) {
         double grad = Length(field_.Gradient(centre));
         if (std::abs(gc) > b * grad + 0.5 * b * b * fb.G) {
             Count(c.h1bisFired);

@@ -65,7 +65,6 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include "libcommon/constants.h"
@@ -216,7 +215,6 @@ class LGOctree {
     Ref root_ = kEmptyRef;
     bool degraded_ = false;
     std::vector<TermValueRange> termRanges_;  // build scratch (Build's predominance test)
-    std::unordered_map<uint64_t, double> latticeValues_;  // build scratch (LatticeValue)
 };
 
 // The statistics counter of Ridders iterations (every octree search counts into it), so
