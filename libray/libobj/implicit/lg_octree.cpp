@@ -307,7 +307,19 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
       settings_(settings) {
     if (box_.IsEmpty()) return;
     LatticeTable().Clear();
+    // Build into this thread's reusable arrays (no regrowth per tree), then keep copies of
+    // exactly the nodes built (no spare capacity).
+    thread_local std::vector<Internal> internalScratch;
+    thread_local std::vector<Leaf> leafScratch;
+    internalScratch.clear();
+    leafScratch.clear();
+    internals_.swap(internalScratch);
+    leaves_.swap(leafScratch);
     root_ = Build(box_, 0, {0, 0, 0});
+    internals_.swap(internalScratch);
+    leaves_.swap(leafScratch);
+    internals_.assign(internalScratch.begin(), internalScratch.end());
+    leaves_.assign(leafScratch.begin(), leafScratch.end());
     std::vector<TermValueRange>().swap(termRanges_);
     if (degraded_) {
         Report(Severity::Warn, {},
