@@ -21,6 +21,12 @@
 //                          blend statement all overlapping skeletons blend (automatic
 //                          neighbour lists); with one or more, only declared pairs do
 //                          (a negative skeleton then carves only those it blends with).
+//   contact NameA NameB    the patches of skeletons NameA and NameB collide (contact.h): they
+//                          never blend, and each is deformed by the other's field so both
+//                          surfaces meet exactly on the contact surface (compression)
+//   propagation Name Width [Height]   gives Name's patch an attenuation zone of geometric
+//                          width Width >= 0 around its contact zone, with a smooth bulge of
+//                          relative height Height in [0, 1] (default 0.5); see contact.h
 //   end
 // Skeleton numbers, weights and field parameters may be animated expressions; the object
 // is then rebuilt by PrepareFrame for each frame (Bounds() describes the current frame).
@@ -40,7 +46,7 @@
 #include <vector>
 
 #include "libcommon/arg_reader.h"
-#include "libobj/implicit/lg_octree.h"
+#include "libobj/implicit/contact.h"
 #include "libobj/primitive.h"
 
 namespace rs {
@@ -62,6 +68,9 @@ struct ImplicitOptions {
     // The declared blend graph; used only in patches mode.
     BlendMode blendMode = BlendMode::Automatic;
     std::vector<std::pair<int, int>> blendPairs;  // term indices, Explicit mode only
+    // Colliding patches and their attenuation zones (contact.h); patches mode only.
+    std::vector<ContactPair> contacts;
+    std::vector<Propagation> propagations;
 };
 
 class ImplicitSurface final : public Primitive {
