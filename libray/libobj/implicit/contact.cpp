@@ -58,6 +58,10 @@ ProfileBounds BulgeProfile::Bounds(double u0, double u1) const {
     pb.valueMin = std::min(Value(u0), Value(u1));
     pb.valueMax = Value(std::clamp(PeakU(), u0, u1));
     if (u0 <= 0) pb.maxSlope = 1;  // the compression piece, δ' = 1, δ'' = 0
+    if (width_ == 0 && u0 <= 0 && u1 >= 0) {
+        // min(u, 0) has a kink at 0: no second-derivative bound across it.
+        pb.maxSecond = std::numeric_limits<double>::infinity();
+    }
     double lo = std::max(u0, 0.0), hi = std::min(u1, width_);
     if (width_ > 0 && lo <= hi) {
         // Bulge piece on the closed [lo, hi] (its one-sided limits at 0 and w included).
@@ -134,10 +138,10 @@ FieldBound ContactDeformation::Bound(const Bounds3& box) const {
     ProfileBounds pb = profile_.Bounds(threshold_ - ob.valueMax, threshold_ - ob.valueMin);
     out.valueMin = pb.valueMin;
     out.valueMax = pb.valueMax;
-    // Products written so that a zero factor wins over an infinite opponent G.
-    out.L = pb.maxSlope > 0 ? pb.maxSlope * ob.L : 0;
-    out.G = (pb.maxSecond > 0 ? pb.maxSecond * ob.L * ob.L : 0) +
-            (pb.maxSlope > 0 ? pb.maxSlope * ob.G : 0);
+    // Products written so that a zero factor wins over an infinite one (0·∞ would be NaN).
+    auto times = [](double a, double b) { return a == 0 || b == 0 ? 0.0 : a * b; };
+    out.L = times(pb.maxSlope, ob.L);
+    out.G = times(pb.maxSecond, ob.L * ob.L) + times(pb.maxSlope, ob.G);
     return out;
 }
 

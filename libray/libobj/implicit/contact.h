@@ -22,7 +22,10 @@
 // zone (the paper's condition, written with the sign that makes it C¹: the bulge term's
 // gradient equals the compression term's, −∇O_A). δ(w) = δ'(w) = 0: the bulge fades out
 // with zero slope at the outer edge of the zone O_A = T − w. The profile is C¹ and
-// piecewise C² (δ'' jumps at u = 0 and u = w), which is what the LG tests need.
+// piecewise C² (δ'' jumps at u = 0 and u = w), which is what the LG tests need. Without a
+// zone (w = 0, compression only) δ = min(u, 0) has a kink on the opponent's surface: the
+// deformed surface has a crease at the rim, and G is infinite in the cells crossing it
+// (the search then relies on L and splitting there, still sound).
 // Why this profile: it is the lowest-degree polynomial with the four end conditions (the
 // cubic u(1 − s)², η = 0, peak 4w/27 at s = 1/3) plus the one-parameter quartic family
 // u(1 − s)²(1 + 2ηs) that raises the bulge (peak ≈ 0.26w at η = 1) while keeping δ(u) <= u
@@ -71,7 +74,8 @@ namespace rs {
 struct ProfileBounds {
     double valueMin = 0, valueMax = 0;
     double maxSlope = 0;   // max |δ'|
-    double maxSecond = 0;  // max |δ''|, one-sided values at u = 0 and u = w included
+    double maxSecond = 0;  // max |δ''|, one-sided values at u = 0 and u = w included;
+                           // +infinity across the kink of the zone-less profile
 };
 
 class BulgeProfile {
