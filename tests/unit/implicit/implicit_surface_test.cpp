@@ -282,3 +282,74 @@ TEST(ImplicitSurface, ExampleRingEndsDoNotBlend) {
 
 }  // namespace
 }  // namespace rs
+
+namespace rs {
+namespace {
+
+// Two unit spheres (default kernel: e = 1, R = 2) centred at x = ±0.8, in contact.
+constexpr const char* kContactPair =
+    "point a -0.8 0 0 point b 0.8 0 0 contact a b propagation a 0.3 propagation b 0.3 0.5 end";
+
+TEST(ImplicitContact, StatementsParseAndFailLocated) {
+    auto p = Parse(kContactPair);
+    ASSERT_TRUE(p);
+    EXPECT_EQ(static_cast<ImplicitSurface&>(*p).PatchCount(), 2);
+    for (const char* bad : {"point a 0 0 0 contact a c end", "point a 0 0 0 contact a a end",
+                            "point a 0 0 0 point b 1 0 0 blend a b contact a b end",
+                            "point a 0 0 0 point b 1 0 0 contact a b propagation a -1 end",
+                            "point a 0 0 0 point b 1 0 0 contact a b propagation a 1 2 end",
+                            "point a 0 0 0 point b 1 0 0 contact a b propagation c 1 end"}) {
+        TokenReader reader(bad);
+        EXPECT_THROW(ImplicitSurface::Create(reader), FatalError) << bad;
+    }
+    TokenReader lonely("point a 0 0 0 point b 3 0 0 propagation a 0.2 end");
+    EXPECT_TRUE(ImplicitSurface::Create(lonely));
+    EXPECT_EQ(lonely.warnings.size(), 1u);
+}
+
+// From inside either sphere, in any direction through the contact disk, the first hit is on
+// the symmetry plane to the tolerance (1e-7). From outside, the rim is where the undeformed
+// spheres cross (x = 0, ρ = 0.6): there f_a = f_b = 1 and the bulge term is 0.
+TEST(ImplicitContact, SymmetricSpheresMeetOnTheSymmetryPlane) {
+    auto p = Parse(kContactPair);
+    ASSERT_TRUE(p);
+    for (int i = 0; i < 400; ++i) {
+        double phi = 2 * 3.14159265358979 * i / 400, r = 0.5 * (i % 7) / 6;
+        Vec3 target{0, r * std::cos(phi), r * std::sin(phi)};
+        for (double side : {-1.0, 1.0}) {
+            Vec3 origin{0.05 * side, target.y * 0.5, target.z * 0.5 + 0.01 * (i % 3)};
+            Ray ray{origin, Normalize(target - origin)};
+            PrimitiveHit hit;
+            auto t = Hit(*p, ray, &hit);
+            ASSERT_TRUE(t.has_value()) << i;
+            EXPECT_LE(std::abs(ray.At(*t).x), 1e-7) << i;
+            Vec3 n = p->Normal(ray.At(*t), hit).geometric;
+            // Leaving one sphere and entering the other at the same point (either patch may
+            // report it): the normal is ±x.
+            EXPECT_NEAR(std::abs(n.x), 1, 1e-6) << i;
+        }
+    }
+    auto rim = Hit(*p, {{0, -5, 0}, {0, 1, 0}});
+    ASSERT_TRUE(rim.has_value());
+    EXPECT_NEAR(*rim, 4.4, 1e-7);
+    // The far sides are untouched spheres.
+    EXPECT_NEAR(*Hit(*p, {{-5, 0, 0}, {1, 0, 0}}), 3.2, 1e-7);
+}
+
+// Contacts follow animated skeletons: b moves from interpenetration (t = 0.8) to a gap of
+// 0.1 (t = 1.3), narrower than the zone; the bulge switches off and a is a plain sphere.
+TEST(ImplicitContact, ContactFollowsAnimation) {
+    auto p = Parse("point a -0.8 0 0 point b TIME 0 0 contact a b propagation a 0.3 "
+                   "propagation b 0.3 end");
+    ASSERT_TRUE(p);
+    p->PrepareFrame(0.8);
+    EXPECT_NEAR(*Hit(*p, {{0, -5, 0}, {0, 1, 0}}), 4.4, 1e-7);
+    p->PrepareFrame(1.3);
+    Ray between{{0.25, 0, 0}, {-1, 0, 0}};  // in the gap, towards a's surface at x = 0.2
+    EXPECT_NEAR(*Hit(*p, between), 0.05, 1e-7);
+    // In that frame a point of the gap between the two undeformed spheres is outside both.
+    EXPECT_NEAR(*Hit(*p, {{0.25, 0, 0}, {1, 0, 0}}), 0.05, 1e-7);
+}
+
+}  // namespace
+}  // namespace rs
