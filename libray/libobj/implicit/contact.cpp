@@ -205,6 +205,28 @@ WidthMeasure MeasureWidth(const std::vector<FieldTerm>& terms, const std::vector
     return m;
 }
 
+// Adds to `out` the cells of `box` where both the opponent may exceed T − w and the own
+// undeformed field may exceed T − peak (value-range bounds, so no such point is left out).
+void GrowAffected(const Field& own, const Field& opponent, double ownEdge, double opponentEdge,
+                  const Bounds3& box, int depth, Bounds3& out) {
+    FieldBound ob = opponent.Bound(box);
+    if (ob.valueMax <= opponentEdge) return;
+    FieldBound fb = own.Bound(box);
+    if (fb.valueMax <= ownEdge) return;
+    if (depth == kZoneDepth) {
+        out.Extend(box);
+        return;
+    }
+    Vec3 c = box.Center();
+    for (int i = 0; i < 8; ++i) {
+        Bounds3 child(Vec3{(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y,
+                           (i & 4) ? c.z : box.lo.z},
+                      Vec3{(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y,
+                           (i & 4) ? box.hi.z : c.z});
+        GrowAffected(own, opponent, ownEdge, opponentEdge, child, depth + 1, out);
+    }
+}
+
 }  // namespace
 
 std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
@@ -267,8 +289,21 @@ std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
         auto deformation =
             std::make_shared<ContactDeformation>(std::move(plan.opponent), threshold, plan.profile);
         plan.result.zone = deformation->Zone();
-        patches[i].Deform(std::move(deformation));
-        trees[i] = BuildPatchOctree(patches[i], threshold, settings);
+        const BulgeProfile& profile = deformation->Profile();
+        Bounds3 region = Intersection(deformation->Zone(), patches[i].Box());
+        if (!region.IsEmpty()) {
+            GrowAffected(patches[i].GetField(), deformation->Opponent(),
+                         threshold - profile.Value(profile.PeakU()),
+                         threshold - profile.Width(), region, 0, plan.result.affected);
+        }
+        // With no affected point the deformed and undeformed fields agree in sign over the
+        // whole patch box, and the term vanishes on the surface with its gradient: the
+        // surface and its normals are unchanged, so the patch keeps its undeformed field.
+        plan.result.deformed = !plan.result.affected.IsEmpty();
+        if (plan.result.deformed) {
+            patches[i].Deform(std::move(deformation));
+            trees[i] = BuildPatchOctree(patches[i], threshold, settings);
+        }
         out.push_back(plan.result);
     }
     return out;

@@ -141,11 +141,18 @@ struct DeformedPatch {
     int patch = -1;           // index into the patch list
     double fieldWidth = 0;    // w in field units; 0 when no bulge
     bool interpenetrates = false;  // the measuring ray saw the volumes overlap
+    bool deformed = false;    // the patch field was replaced (affected box not empty)
     Bounds3 zone;             // ContactDeformation::Zone()
+    // Contains every point of the patch box where the deformed field and the undeformed one
+    // lie on different sides of T (there the term is non-zero, O > T − w, and f_A exceeds
+    // T minus the bulge's peak value): the "deformation box" of Gascuel's figure 7.
+    Bounds3 affected;
 };
 
 // Deforms every patch whose own term appears in a contact pair (pairs naming a term without
-// a patch are ignored) and rebuilds its octree on the deformed field. `trees` must be the
+// a patch are ignored) and rebuilds its octree on the deformed field, unless its affected
+// box is empty (the surface and its normals would not change: a contact declared between
+// patches that do not touch costs nothing beyond the build). `trees` must be the
 // undeformed trees of `patches` (BuildPatchOctree, same order); they are used to measure
 // the zone widths before any patch is changed. Reports a warning (and builds no bulge) when
 // the width cannot be measured (the own skeleton lies inside the opponent, or the ray finds

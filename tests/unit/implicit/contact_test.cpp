@@ -227,11 +227,35 @@ TEST(ContactSpheres, ContactsAreDeclaredSeparateAndMeasured) {
     ASSERT_EQ(s.deformed.size(), 2u);
     for (const DeformedPatch& d : s.deformed) {
         EXPECT_TRUE(d.interpenetrates);
+        EXPECT_TRUE(d.deformed);
         // The ray from a's centre enters b's sphere at x = −0.2, the zone edge is 0.3
         // before it, at distance 1.3 from b's centre: w = 1 − f(1.3) for the default kernel
         // (outer cubic, ℓ = 1, m = 1, s = 0.3: 2s³ − 3s² + 1 − (s³ − 2s² + s)).
         double sp = 0.3, f = 2 * sp * sp * sp - 3 * sp * sp + 1 - (sp * sp * sp - 2 * sp * sp + sp);
         EXPECT_NEAR(d.fieldWidth, 1 - f, 1e-6);
+    }
+}
+
+// The affected box holds every point where the deformed and undeformed fields of a patch lie
+// on different sides of the threshold.
+TEST(ContactSpheres, AffectedBoxHoldsEveryChangedPoint) {
+    for (double width : {0.0, 0.3}) {
+        TwoSpheres s(width, 1.0);
+        Field undeformed(s.patches[0].GetField().Terms());
+        const Bounds3& affected = s.deformed[0].affected;
+        Rng rng(5);
+        int changed = 0;
+        for (int i = 0; i < 200000; ++i) {
+            Vec3 p = testing::RandomInBox(rng, s.patches[0].Box());
+            bool before = undeformed.Value(p) > 1, after = s.patches[0].GetField().Value(p) > 1;
+            if (before == after) continue;
+            ++changed;
+            ASSERT_TRUE(affected.Contains(p)) << "width " << width << " sample " << i;
+        }
+        EXPECT_GT(changed, 100);
+        // The box stays near the contact: within the slab |x| < 0.6 around the plane.
+        EXPECT_GT(affected.lo.x, -0.6);
+        EXPECT_LT(affected.hi.x, 0.6);
     }
 }
 
@@ -357,6 +381,9 @@ TEST(ContactSpheres, NoBulgeWithoutInterpenetration) {
     ASSERT_EQ(d.size(), 2u);
     EXPECT_FALSE(d[0].interpenetrates);
     EXPECT_EQ(d[0].fieldWidth, 0);
+    EXPECT_FALSE(d[0].deformed);
+    EXPECT_FALSE(d[1].deformed);
+    EXPECT_EQ(patches[0].GetField().Deformation(), nullptr);
     // The surfaces are the undeformed spheres: the ray along x leaves a at x = −0.1.
     Ray ray{{-1.1, 0, 0}, {1, 0, 0}};
     std::optional<double> t = PatchFirstRoot(patches[0], trees[0], ray, 0, 10);
