@@ -188,8 +188,12 @@ WidthMeasure MeasureWidth(const std::vector<FieldTerm>& terms, const std::vector
             to = c;
         }
     }
-    if (!(nearest > 0) || opponentField.Value(from) >= threshold) return m;
-    Ray ray{from, (to - from) / nearest};
+    if (!(nearest > 0)) return m;
+    // Along the line from A's skeleton point towards the opponent's, or away from it when A's
+    // skeleton point already lies inside the opponent (deep contact): either way the ray
+    // meets the opponent's surface at `entry`, and the zone is measured on A's side of it.
+    const bool deep = opponentField.Value(from) >= threshold;
+    Ray ray{from, (deep ? from - to : to - from) / nearest};
     const double far = std::numeric_limits<double>::infinity();
     double entry = far;
     for (int o : opponents) {
@@ -197,10 +201,16 @@ WidthMeasure MeasureWidth(const std::vector<FieldTerm>& terms, const std::vector
         if (t) entry = *t;
     }
     if (entry == far) return m;
-    std::optional<double> exit = PatchFirstRoot(patches[self], trees[self], ray, 0, far);
     m.measured = true;
-    m.interpenetrates = exit && entry < *exit;
-    double w = threshold - opponentField.Value(ray.At(entry - width));
+    double w;
+    if (deep) {
+        m.interpenetrates = true;
+        w = threshold - opponentField.Value(ray.At(entry + width));
+    } else {
+        std::optional<double> exit = PatchFirstRoot(patches[self], trees[self], ray, 0, far);
+        m.interpenetrates = exit && entry < *exit;
+        w = threshold - opponentField.Value(ray.At(entry - width));
+    }
     m.fieldWidth = std::clamp(w, 0.0, threshold);
     return m;
 }
@@ -270,8 +280,8 @@ std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
                                           plan.opponent, threshold, prop.width);
             if (!m.measured) {
                 Report(Severity::Warn, {},
-                       "implicit contact: no propagation zone for '%s' (its skeleton lies "
-                       "inside the opponent, or no opponent surface faces it)",
+                       "implicit contact: no propagation zone for '%s' (the line from its "
+                       "skeleton to the opponent's meets no opponent surface)",
                        terms[own].name.c_str());
                 continue;
             }

@@ -40,13 +40,16 @@
 // The zone is a field distance: u is T − O_A, which equals |∇O_A| times the distance to the
 // opponent's surface to first order. The user gives a geometric width W; ApplyContacts turns
 // it into w once per build by firing a ray at the opponent's undeformed surface with the
-// patches' own LG octrees (PatchFirstRoot): along the line from A's own skeleton to the
-// nearest opponent skeleton, s is where the ray enters the opponent, and w = T − O_A at
-// distance W before s (clamped to [0, T], so the zone stays inside the opponent's support).
-// The same ray detects the contact: the bulge is switched on only when the ray enters the
-// opponent before it leaves A's own undeformed volume (the volumes interpenetrate along the
-// line), so contacts may stay declared while animated skeletons move apart; compression
-// needs no switch (it changes A's surface only where the volumes overlap). Using the field
+// patches' own LG octrees (PatchFirstRoot): from the point of A's own skeleton nearest the
+// opponent skeletons' box centre, towards the nearest opponent skeleton point, s is where
+// the ray enters the opponent, and w = T − O_A at distance W before s (clamped to [0, T],
+// so the zone stays inside the opponent's support). When A's skeleton point already lies
+// inside the opponent (deep contact) the ray goes the other way, s is where it leaves the
+// opponent, and w = T − O_A at distance W beyond s. The same ray detects the contact: the
+// bulge is switched on only in deep contact or when the ray enters the opponent before it
+// leaves A's own undeformed volume (the volumes interpenetrate along the line), so contacts
+// may stay declared while animated skeletons move apart; compression needs no switch (it
+// changes A's surface only where the volumes overlap). Using the field
 // itself as the distance (instead of firing a ray per evaluation, as the paper's renderer
 // did) keeps D_A C¹ with computable L and G, and costs one opponent evaluation.
 //
@@ -155,8 +158,7 @@ struct DeformedPatch {
 // patches that do not touch costs nothing beyond the build). `trees` must be the
 // undeformed trees of `patches` (BuildPatchOctree, same order); they are used to measure
 // the zone widths before any patch is changed. Reports a warning (and builds no bulge) when
-// the width cannot be measured (the own skeleton lies inside the opponent, or the ray finds
-// no opponent surface).
+// the width cannot be measured (the measuring ray finds no opponent surface).
 std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
                                          const std::vector<ContactPair>& contacts,
                                          const std::vector<Propagation>& propagations,
