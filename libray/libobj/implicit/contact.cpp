@@ -22,8 +22,18 @@ double Q1(double eta, double s) {
 }
 double Q2(double eta, double s) { return (4 * eta - 4) + s * ((6 - 24 * eta) + s * 24 * eta); }
 
-// The zone box stops subdividing at this depth (cells of 1/32 of the support box per axis).
+// The zone and affected boxes stop subdividing at this depth (cells of 1/32 of the
+// starting box per axis).
 constexpr int kZoneDepth = 5;
+
+// Child i of a box split at its centre (bit 0: upper x half, bit 1: y, bit 2: z).
+Bounds3 Octant(const Bounds3& box, int i) {
+    Vec3 c = box.Center();
+    return Bounds3(Vec3{(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y,
+                        (i & 4) ? c.z : box.lo.z},
+                   Vec3{(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y,
+                        (i & 4) ? box.hi.z : c.z});
+}
 
 }  // namespace
 
@@ -108,14 +118,7 @@ void ContactDeformation::GrowZone(const Bounds3& box, int depth) {
         zone_.Extend(box);
         return;
     }
-    Vec3 c = box.Center();
-    for (int i = 0; i < 8; ++i) {
-        Bounds3 child(Vec3{(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y,
-                           (i & 4) ? c.z : box.lo.z},
-                      Vec3{(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y,
-                           (i & 4) ? box.hi.z : c.z});
-        GrowZone(child, depth + 1);
-    }
+    for (int i = 0; i < 8; ++i) GrowZone(Octant(box, i), depth + 1);
 }
 
 double ContactDeformation::Value(const Vec3& p) const {
@@ -227,13 +230,8 @@ void GrowAffected(const Field& own, const Field& opponent, double ownEdge, doubl
         out.Extend(box);
         return;
     }
-    Vec3 c = box.Center();
     for (int i = 0; i < 8; ++i) {
-        Bounds3 child(Vec3{(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y,
-                           (i & 4) ? c.z : box.lo.z},
-                      Vec3{(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y,
-                           (i & 4) ? box.hi.z : c.z});
-        GrowAffected(own, opponent, ownEdge, opponentEdge, child, depth + 1, out);
+        GrowAffected(own, opponent, ownEdge, opponentEdge, Octant(box, i), depth + 1, out);
     }
 }
 

@@ -143,7 +143,8 @@ struct Propagation {
 struct DeformedPatch {
     int patch = -1;           // index into the patch list
     double fieldWidth = 0;    // w in field units; 0 when no bulge
-    bool interpenetrates = false;  // the measuring ray saw the volumes overlap
+    // The measuring ray saw the volumes overlap (measured only for patches with a zone).
+    bool interpenetrates = false;
     bool deformed = false;    // the patch field was replaced (affected box not empty)
     Bounds3 zone;             // ContactDeformation::Zone()
     // Contains every point of the patch box where the deformed field and the undeformed one

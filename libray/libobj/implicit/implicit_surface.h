@@ -1,4 +1,4 @@
-// Layer 7 of the implicit module: the `implicit` primitive (Gascuel 1995, "Implicit
+// Layer 8 of the implicit module: the `implicit` primitive (Gascuel 1995, "Implicit
 // Patches"), the only file of the module that knows libobj. Compiled into ray_obj.
 //
 // Scene syntax, after `implicit [surface]`, until `end` (see README.md in this folder):
