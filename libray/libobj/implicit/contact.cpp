@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "libcommon/error.h"
+#include "libcommon/stats.h"
 
 namespace rs {
 
@@ -21,6 +22,17 @@ double Q1(double eta, double s) {
     return 1 + s * ((4 * eta - 4) + s * ((3 - 12 * eta) + s * 8 * eta));
 }
 double Q2(double eta, double s) { return (4 * eta - 4) + s * ((6 - 24 * eta) + s * 24 * eta); }
+
+// Build counters; an ImplicitSurface reports them per object as "preprocessing contact ...".
+struct ContactCounters {
+    CounterId deformed = RegisterCounter("Implicit contact deformed patches");
+    CounterId bulges = RegisterCounter("Implicit contact bulges");
+};
+
+const ContactCounters& Counters() {
+    static const ContactCounters counters;
+    return counters;
+}
 
 // The zone and affected boxes stop subdividing at this depth (cells of 1/32 of the
 // starting box per axis).
@@ -295,8 +307,9 @@ std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
     // (2 + 4η)L_O²/w: leaves must be small for the search's monotonicity test (λ < 2L/G) to
     // fire, or each span falls back to per-segment bounds. Two more levels before heuristics
     // 3 and 3bis may stop (within the declared maximum depth) paid off on the figure-7 scene
-    // (bench/contact.sh, 400×400): +0/+1/+2/+3 levels gave 15.1/10.8/8.7/7.7 evaluations per
-    // ray against 7.5 undeformed, for 14/5/21/53 ms of build.
+    // (bench/contact.sh, 400×400): +0/+1/+2/+3 levels gave 14.0/10.4/8.3/7.6 evaluations per
+    // ray against 7.6 undeformed, for 8/8/11/32 ms of build and 1.72/1.28/1.25/1.36 times
+    // the undeformed render time.
     OctreeSettings deformed = settings;
     deformed.minDepth = std::min(settings.minDepth + 2, settings.maxDepth);
     std::vector<DeformedPatch> out;
@@ -317,6 +330,8 @@ std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
         // surface and its normals are unchanged, so the patch keeps its undeformed field.
         plan.result.deformed = !plan.result.affected.IsEmpty();
         if (plan.result.deformed) {
+            Count(Counters().deformed);
+            if (profile.Width() > 0) Count(Counters().bulges);
             patches[i].Deform(std::move(deformation));
             trees[i] = BuildPatchOctree(patches[i], threshold, deformed);
         }

@@ -259,6 +259,7 @@ void ImplicitSurface::BuildStructures() {
     whole_ = Field(terms_);
     patches_.clear();
     trees_.clear();
+    contacts_.clear();
     bounds_ = Bounds3();
     const double threshold = options_.threshold;
     if (options_.singleOctree) {
@@ -278,8 +279,8 @@ void ImplicitSurface::BuildStructures() {
         bounds_.Extend(p.Box());
     }
     if (!options_.contacts.empty()) {
-        ApplyContacts(terms_, options_.contacts, options_.propagations, threshold,
-                      options_.octree, patches_, trees_);
+        contacts_ = ApplyContacts(terms_, options_.contacts, options_.propagations, threshold,
+                                  options_.octree, patches_, trees_);
     }
     bvh_.clear();
     bvhOrder_.resize(patches_.size());

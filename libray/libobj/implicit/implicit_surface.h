@@ -97,6 +97,9 @@ class ImplicitSurface final : public Primitive {
 
     const std::vector<FieldTerm>& Terms() const { return terms_; }
     int PatchCount() const { return static_cast<int>(patches_.size()); }
+    // What the contacts did to the patches in the current frame (contact.h; empty without
+    // contacts or in kb89 mode).
+    const std::vector<DeformedPatch>& Contacts() const { return contacts_; }
 
     ImplicitMethod Method() const;
     // Switches the intersection method (and the octree heuristics that go with it, keeping
@@ -139,6 +142,7 @@ class ImplicitSurface final : public Primitive {
     std::function<std::vector<FieldTerm>(double)> termsAt_;
     std::vector<Patch> patches_;
     std::vector<LGOctree> trees_;  // one per patch, or the single octree
+    std::vector<DeformedPatch> contacts_;
     Field whole_;                   // the plain sum (normals in single-octree mode)
     Bounds3 bounds_;
     std::vector<BvhNode> bvh_;  // root at 0 when there are patches

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -349,6 +350,62 @@ TEST(ImplicitContact, ContactFollowsAnimation) {
     EXPECT_NEAR(*Hit(*p, between), 0.05, 1e-7);
     // In that frame a point of the gap between the two undeformed spheres is outside both.
     EXPECT_NEAR(*Hit(*p, {{0.25, 0, 0}, {1, 0, 0}}), 0.05, 1e-7);
+}
+
+// The wire boxes drawn in examples/implicit/fig7.ray are the deformation boxes of its
+// deformed patches (DeformedPatch::affected), rounded outward to 0.01, as its comment says.
+TEST(ImplicitContact, Figure7BoxesAreTheDeformationBoxes) {
+    std::ifstream in(RAYSHADE_SOURCE_DIR "/examples/implicit/fig7.ray");
+    ASSERT_TRUE(in.good());
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string scene = text.str();
+    size_t begin = scene.find("implicit clay");
+    ASSERT_NE(begin, std::string::npos);
+    begin += std::string("implicit clay").size();
+    size_t end = scene.find("\nend", begin);
+    ASSERT_NE(end, std::string::npos);
+    std::string block = scene.substr(begin, end + 4 - begin);
+    for (char& c : block) {
+        if (c == '\n' || c == '\t') c = ' ';
+    }
+    auto p = Parse(block);
+    ASSERT_TRUE(p);
+    const auto& surface = static_cast<const ImplicitSurface&>(*p);
+    // The boxes in the file, one per "deformation box of NAME" comment, from the corners of
+    // the wire cylinders that follow it.
+    std::map<std::string, Bounds3> drawn;
+    std::string current;
+    std::istringstream lines(scene);
+    std::string line;
+    while (std::getline(lines, line)) {
+        const std::string marker = "/* deformation box of ";
+        if (line.rfind(marker, 0) == 0) {
+            current = line.substr(marker.size(), line.find(' ', marker.size()) - marker.size());
+        } else if (line.rfind("cylinder wire", 0) == 0) {
+            std::istringstream numbers(line.substr(std::string("cylinder wire").size()));
+            double r;
+            Vec3 a, b;
+            numbers >> r >> a.x >> a.y >> a.z >> b.x >> b.y >> b.z;
+            drawn[current].Extend(a);
+            drawn[current].Extend(b);
+        }
+    }
+    int deformed = 0;
+    for (const DeformedPatch& d : surface.Contacts()) {
+        if (!d.deformed) continue;
+        ++deformed;
+        std::string name = surface.Terms()[d.patch].name;  // one patch per term here
+        ASSERT_TRUE(drawn.count(name)) << name;
+        const Bounds3& box = drawn[name];
+        for (int axis = 0; axis < 3; ++axis) {  // rounded outward by less than 0.01
+            EXPECT_LE(box.lo[axis], d.affected.lo[axis] + 1e-6) << name;
+            EXPECT_GT(box.lo[axis], d.affected.lo[axis] - 0.01) << name;
+            EXPECT_GE(box.hi[axis], d.affected.hi[axis] - 1e-6) << name;
+            EXPECT_LT(box.hi[axis], d.affected.hi[axis] + 0.01) << name;
+        }
+    }
+    EXPECT_EQ(deformed, static_cast<int>(drawn.size()));
 }
 
 }  // namespace
