@@ -15,9 +15,7 @@ namespace {
 //   q(s)   = s(1 − s)²(1 + 2ηs) = s + (2η − 2)s² + (1 − 4η)s³ + 2ηs⁴,
 //   q'(s)  = 1 + (4η − 4)s + (3 − 12η)s² + 8ηs³      (δ' = q'),
 //   q''(s) = (4η − 4) + (6 − 24η)s + 24ηs²            (δ'' = q''/w).
-double Q(double eta, double s) {
-    return s * (1 - s) * (1 - s) * (1 + 2 * eta * s);
-}
+double Q(double eta, double s) { return s * (1 - s) * (1 - s) * (1 + 2 * eta * s); }
 double Q1(double eta, double s) {
     return 1 + s * ((4 * eta - 4) + s * ((3 - 12 * eta) + s * 8 * eta));
 }
@@ -41,10 +39,9 @@ constexpr int kZoneDepth = 5;
 // Child i of a box split at its centre (bit 0: upper x half, bit 1: y, bit 2: z).
 Bounds3 Octant(const Bounds3& box, int i) {
     Vec3 c = box.Center();
-    return Bounds3(Vec3{(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y,
-                        (i & 4) ? c.z : box.lo.z},
-                   Vec3{(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y,
-                        (i & 4) ? box.hi.z : c.z});
+    return Bounds3(
+        Vec3{(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y, (i & 4) ? c.z : box.lo.z},
+        Vec3{(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y, (i & 4) ? box.hi.z : c.z});
 }
 
 }  // namespace
@@ -322,8 +319,8 @@ std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
         Bounds3 region = Intersection(deformation->Zone(), patches[i].Box());
         if (!region.IsEmpty()) {
             GrowAffected(patches[i].GetField(), deformation->Opponent(),
-                         threshold - profile.Value(profile.PeakU()),
-                         threshold - profile.Width(), region, 0, plan.result.affected);
+                         threshold - profile.Value(profile.PeakU()), threshold - profile.Width(),
+                         region, 0, plan.result.affected);
         }
         // With no affected point the deformed and undeformed fields agree in sign over the
         // whole patch box, and the term vanishes on the surface with its gradient: the

@@ -141,12 +141,12 @@ struct Propagation {
 
 // What ApplyContacts did to one patch (for statistics, tests and the examples' boxes).
 struct DeformedPatch {
-    int patch = -1;           // index into the patch list
-    double fieldWidth = 0;    // w in field units; 0 when no bulge
+    int patch = -1;         // index into the patch list
+    double fieldWidth = 0;  // w in field units; 0 when no bulge
     // The measuring ray saw the volumes overlap (measured only for patches with a zone).
     bool interpenetrates = false;
-    bool deformed = false;    // the patch field was replaced (affected box not empty)
-    Bounds3 zone;             // ContactDeformation::Zone()
+    bool deformed = false;  // the patch field was replaced (affected box not empty)
+    Bounds3 zone;           // ContactDeformation::Zone()
     // Contains every point of the patch box where the deformed field and the undeformed one
     // lie on different sides of T (there the term is non-zero, O > T − w, and f_A exceeds
     // T minus the bulge's peak value): the "deformation box" of Gascuel's figure 7.
@@ -164,7 +164,6 @@ std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
                                          const std::vector<ContactPair>& contacts,
                                          const std::vector<Propagation>& propagations,
                                          double threshold, const OctreeSettings& settings,
-                                         std::vector<Patch>& patches,
-                                         std::vector<LGOctree>& trees);
+                                         std::vector<Patch>& patches, std::vector<LGOctree>& trees);
 
 }  // namespace rs

@@ -63,8 +63,7 @@ TEST(BulgeProfile, BelowIdentityAndDerivatives) {
                 ASSERT_NEAR(p.Derivative(u), (p.Value(u + h) - p.Value(u - h)) / (2 * h), 1e-6)
                     << "seed " << seed;
                 ASSERT_NEAR(p.SecondDerivative(u),
-                            (p.Derivative(u + h) - p.Derivative(u - h)) / (2 * h),
-                            1e-5 / p.Width())
+                            (p.Derivative(u + h) - p.Derivative(u - h)) / (2 * h), 1e-5 / p.Width())
                     << "seed " << seed;
             }
         }
