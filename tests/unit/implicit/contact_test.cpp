@@ -105,10 +105,14 @@ TEST(BulgeProfile, BoundsHoldOnDenseSamples) {
 // ---------------------------------------------------------------------------------------
 // The deformation term over random opponents and boxes.
 
+// Mostly quadratic and blob kernels (finite G), sometimes linear (infinite G at the
+// skeleton, which the deformation's bounds must carry through without NaN).
 Kernel RandomSmoothKernel(Rng& rng) {
     double e = Uniform(rng, 0.2, 0.7), big = e + Uniform(rng, 0.3, 1.0);
     double k = Uniform(rng, 0.3, 3.0 / (big - e));
-    if (rng.Uniform() < 0.25) return Kernel::Blob(Uniform(rng, 0.8, 2), big);
+    double pick = rng.Uniform();
+    if (pick < 0.2) return Kernel::Blob(Uniform(rng, 0.8, 2), big);
+    if (pick < 0.3) return Kernel::GascuelLinear(e, k, big);
     return Kernel::GascuelQuadratic(e, k, big);
 }
 
@@ -143,6 +147,7 @@ void CheckBounds(const Field& field, const Bounds3& box, Rng& rng, uint64_t seed
         Vec3 a = p - dir * h, b = p + dir * h;
         if (!box.Contains(a) || !box.Contains(b)) continue;
         double second = Dot(field.Gradient(b) - field.Gradient(a), dir) / (2 * h);
+        ASSERT_FALSE(std::isnan(fb.G)) << "seed " << seed;
         ASSERT_LE(std::abs(second), fb.G * (1 + 1e-6) + 1e-6) << "seed " << seed;
     }
 }
@@ -388,6 +393,65 @@ TEST(ContactSpheres, NoBulgeWithoutInterpenetration) {
     std::optional<double> t = PatchFirstRoot(patches[0], trees[0], ray, 0, 10);
     ASSERT_TRUE(t);
     EXPECT_NEAR(*t, 1, 1e-7);
+}
+
+// The deformed octree search against dense sampling, on random colliding pairs of point and
+// segment skeletons: along random rays through the contact region, the first root the
+// search returns for each deformed patch is no later than the first sign change seen by
+// sampling the deformed field every 1e-3, and is itself a sign change (to the tolerance).
+TEST(ContactPairs, DeformedSearchFindsTheFirstSignChange) {
+    for (uint64_t seed = 1; seed <= 40; ++seed) {
+        Rng rng(seed);
+        std::vector<FieldTerm> terms;
+        for (int i = 0; i < 2; ++i) {
+            FieldTerm t;
+            t.name = i == 0 ? "a" : "b";
+            Vec3 c{i == 0 ? -0.45 : 0.45, Uniform(rng, -0.2, 0.2), Uniform(rng, -0.2, 0.2)};
+            if (rng.Uniform() < 0.5) {
+                t.skeleton = PointSkeleton{c};
+            } else {
+                Vec3 d = testing::RandomUnit(rng) * 0.4;
+                t.skeleton = SegmentSkeleton{c - d, c + d};
+            }
+            double e = Uniform(rng, 0.5, 0.8), big = e + Uniform(rng, 0.4, 1.0);
+            t.kernel = Kernel::GascuelQuadratic(e, Uniform(rng, 0.5, 3.0 / (big - e)), big);
+            terms.push_back(t);
+        }
+        OctreeSettings settings;
+        std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic, {}, {{0, 1}});
+        std::vector<LGOctree> trees;
+        for (const Patch& p : patches) trees.push_back(BuildPatchOctree(p, 1, settings));
+        double width = seed % 4 == 0 ? 0 : Uniform(rng, 0.05, 0.4);
+        std::vector<Propagation> props{{0, width, rng.Uniform()}, {1, width, rng.Uniform()}};
+        ApplyContacts(terms, {{0, 1}}, props, 1, settings, patches, trees);
+        for (int r = 0; r < 60; ++r) {
+            Vec3 target = testing::RandomPoint(rng, -0.5, 0.5);
+            Vec3 dir = testing::RandomUnit(rng);
+            Ray ray{target - dir * 3, dir};
+            for (int k = 0; k < 2; ++k) {
+                const Field& field = patches[k].GetField();
+                double first = -1;
+                double previous = field.Value(ray.At(0)) - 1;
+                for (int i = 1; i <= 6000; ++i) {
+                    double g = field.Value(ray.At(i * 1e-3)) - 1;
+                    if ((g > 0) != (previous > 0)) {
+                        first = i * 1e-3;
+                        break;
+                    }
+                    previous = g;
+                }
+                std::optional<double> t = PatchFirstRoot(patches[k], trees[k], ray, 0, 6);
+                if (first < 0) continue;  // sampling saw nothing (the search may see more)
+                ASSERT_TRUE(t) << "seed " << seed << " ray " << r << " patch " << k;
+                ASSERT_LE(*t, first + 1e-7) << "seed " << seed << " ray " << r << " patch " << k;
+                double below = field.Value(ray.At(*t - 1e-6)) - 1;
+                double above = field.Value(ray.At(*t + 1e-6)) - 1;
+                ASSERT_TRUE((below > 0) != (above > 0) || std::abs(below) < 1e-9 ||
+                            std::abs(above) < 1e-9)
+                    << "seed " << seed << " ray " << r << " patch " << k;
+            }
+        }
+    }
 }
 
 }  // namespace
