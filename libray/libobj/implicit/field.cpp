@@ -44,6 +44,7 @@ double Field::Value(const Vec3& p) const {
         const double d = point ? Length(p - point->center) : SkeletonDistance(t.skeleton, p);
         sum += t.weight * t.kernel.Value(d);
     }
+    if (deformation_) sum += deformation_->Value(p);
     return sum;
 }
 
@@ -59,6 +60,7 @@ Vec3 Field::Gradient(const Vec3& p) const {
         if (d <= 0 || d >= t.kernel.Radius()) continue;
         g += (p - closest) * (t.weight * t.kernel.Derivative(d) / d);
     }
+    if (deformation_) g += deformation_->Gradient(p);
     return g;
 }
 
@@ -95,6 +97,13 @@ FieldBound Field::BoundImpl(const Bounds3& box, std::vector<TermValueRange>* ter
         fb.G += w * curvature;
         fb.minDistance = std::min(fb.minDistance, r.min);
         ++fb.activeTerms;
+    }
+    if (deformation_) {
+        FieldBound db = deformation_->Bound(box);
+        fb.valueMin += db.valueMin;
+        fb.valueMax += db.valueMax;
+        fb.L += db.L;
+        fb.G += db.G;
     }
     return fb;
 }

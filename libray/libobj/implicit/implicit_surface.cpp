@@ -131,8 +131,9 @@ constexpr const char* kSkeletonKinds[] = {"point",    "segment", "polyline", "ci
 }  // namespace
 
 bool ImplicitSurface::IsBlockWord(const std::string& word) {
-    static const char* const kStatements[] = {"threshold", "tolerance", "octree", "method",
-                                              "field",     "blend",     "end"};
+    static const char* const kStatements[] = {"threshold", "tolerance", "octree",
+                                              "method",    "field",     "blend",
+                                              "contact",   "propagation", "end"};
     for (const char* w : kStatements)
         if (word == w) return true;
     for (const char* w : kSkeletonKinds)
@@ -146,7 +147,8 @@ namespace {
 // name lists stop there.
 bool PeekStatement(ArgReader& args) {
     for (const char* word :
-         {"end", "threshold", "tolerance", "octree", "method", "field", "blend"}) {
+         {"end", "threshold", "tolerance", "octree", "method", "field", "blend", "contact",
+          "propagation"}) {
         if (args.Peek(word)) return true;
     }
     for (const char* kind : kSkeletonKinds) {
@@ -311,6 +313,15 @@ void ImplicitSurface::Build() {
     Count(counters_.buildMicroseconds, static_cast<uint64_t>(micros.count()));
 }
 
+OctreeSettings ImplicitSurface::PatchSettings(const Patch& patch) const {
+    OctreeSettings settings = options_.octree;
+    if (options_.autoDepth) {
+        settings.minDepth = AutoMinDepth(patch, options_.threshold);
+        settings.maxDepth = std::min(16, std::max(settings.maxDepth, settings.minDepth + 3));
+    }
+    return settings;
+}
+
 const LGOctree& ImplicitSurface::Tree(int i) const {
     LazyTree& lazy = trees_[i];
     std::call_once(lazy.once, [this, i] { BuildTree(i); });
@@ -327,12 +338,8 @@ void ImplicitSurface::BuildTree(int i) const {
     if (options_.singleOctree) {
         trees_[i].tree.emplace(whole_, options_.threshold, bounds_, options_.octree);
     } else {
-        OctreeSettings settings = options_.octree;
-        if (options_.autoDepth) {
-            settings.minDepth = AutoMinDepth(patches_[i], options_.threshold);
-            settings.maxDepth = std::min(16, std::max(settings.maxDepth, settings.minDepth + 3));
-        }
-        trees_[i].tree.emplace(BuildPatchOctree(patches_[i], options_.threshold, settings));
+        trees_[i].tree.emplace(
+            BuildPatchOctree(patches_[i], options_.threshold, PatchSettings(patches_[i])));
     }
     const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
         std::chrono::steady_clock::now() - start);
@@ -362,6 +369,7 @@ void ImplicitSurface::BuildTree(int i) const {
 void ImplicitSurface::BuildStructures() {
     whole_ = Field(terms_);
     patches_.clear();
+    contacts_.clear();
     bounds_ = Bounds3();
     if (!buildCounterIds_) {
         const size_t count = BuildCounterSources().size();
@@ -376,9 +384,29 @@ void ImplicitSurface::BuildStructures() {
         trees_ = std::make_unique<LazyTree[]>(1);
         return;
     }
-    patches_ = BuildPatches(terms_, options_.blendMode, options_.blendPairs);
+    std::vector<std::pair<int, int>> separate;
+    for (const ContactPair& c : options_.contacts) separate.emplace_back(c.a, c.b);
+    patches_ = BuildPatches(terms_, options_.blendMode, options_.blendPairs, separate);
     trees_ = std::make_unique<LazyTree[]>(patches_.size());
     for (const Patch& p : patches_) bounds_.Extend(p.Box());
+    if (!options_.contacts.empty()) {
+        // Contacts measure and deform with every patch's undeformed tree: build them all
+        // now, then hand them to the lazy holders as already built.
+        std::vector<LGOctree> trees;
+        trees.reserve(patches_.size());
+        for (const Patch& p : patches_) {
+            trees.push_back(BuildPatchOctree(p, options_.threshold, PatchSettings(p)));
+        }
+        contacts_ = ApplyContacts(terms_, options_.contacts, options_.propagations,
+                                  options_.threshold, options_.octree, patches_, trees);
+        for (size_t i = 0; i < trees.size(); ++i) {
+            LazyTree& lazy = trees_[i];
+            std::call_once(lazy.once, [&] { lazy.tree.emplace(std::move(trees[i])); });
+            Count(counters_.cells,
+                  static_cast<uint64_t>(lazy.tree->InternalCount() + lazy.tree->LeafCount()));
+            Count(counters_.memoryBytes, lazy.tree->MemoryBytes());
+        }
+    }
     bvh_.clear();
     bvhOrder_.resize(patches_.size());
     for (size_t i = 0; i < patches_.size(); ++i) bvhOrder_[i] = static_cast<int>(i);
@@ -428,6 +456,12 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     std::vector<ElementSpec> elements;
     std::map<std::string, int> index;
     std::vector<std::vector<std::string>> blends;
+    std::vector<std::pair<std::string, std::string>> contacts;
+    struct PropagationSpec {
+        std::string name;
+        double width = 0, height = 0.5;
+    };
+    std::vector<PropagationSpec> propagations;
     while (!args.Accept("end")) {
         if (args.Accept("threshold")) {
             options.threshold = args.ReadNumber();
@@ -459,6 +493,21 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             std::vector<std::string> names{args.ReadName(), args.ReadName()};
             while (!PeekStatement(args)) names.push_back(args.ReadName());
             blends.push_back(std::move(names));
+        } else if (args.Accept("contact")) {
+            std::string a = args.ReadName();
+            contacts.emplace_back(a, args.ReadName());
+        } else if (args.Accept("propagation")) {
+            PropagationSpec p;
+            p.name = args.ReadName();
+            p.width = args.ReadNumber();
+            if (!(p.width >= 0)) args.Fail("propagation width must be >= 0");
+            if (args.PeekNumber()) {
+                p.height = args.ReadNumber();
+                if (!(p.height >= 0 && p.height <= 1)) {
+                    args.Fail("propagation height must be in [0, 1]");
+                }
+            }
+            propagations.push_back(p);
         } else {
             ElementSpec e;
             for (const char* kind : kSkeletonKinds) {
@@ -469,7 +518,8 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             }
             if (e.kind.empty()) {
                 args.Fail("expected a skeleton (point, segment, polyline, circle, triangle, box, "
-                          "cylinder), blend, field, threshold, tolerance, octree, method or end");
+                          "cylinder), blend, contact, propagation, field, threshold, tolerance, "
+                          "octree, method or end");
             }
             e.name = args.ReadName();
             if (index.count(e.name)) args.Fail("skeleton name '" + e.name + "' used twice");
@@ -517,6 +567,32 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     }
     if (!blends.empty() && options.singleOctree) {
         args.Warn("'blend' is ignored with 'method kb89' (one field, everything blends)");
+    }
+    for (const auto& [a, b] : contacts) {
+        for (const std::string& n : {a, b}) {
+            if (!index.count(n)) args.Fail("contact names unknown skeleton '" + n + "'");
+        }
+        if (a == b) args.Fail("contact needs two different skeletons, not '" + a + "' twice");
+        int ia = index[a], ib = index[b];
+        for (auto [x, y] : options.blendPairs) {
+            if ((x == ia && y == ib) || (x == ib && y == ia)) {
+                args.Fail("skeletons '" + a + "' and '" + b + "' both blend and are in contact");
+            }
+        }
+        options.contacts.push_back({ia, ib});
+    }
+    for (const PropagationSpec& p : propagations) {
+        if (!index.count(p.name)) args.Fail("propagation names unknown skeleton '" + p.name + "'");
+        int term = index[p.name];
+        bool inContact = std::any_of(options.contacts.begin(), options.contacts.end(),
+                                     [term](const ContactPair& c) {
+                                         return c.a == term || c.b == term;
+                                     });
+        if (!inContact) args.Warn("propagation of '" + p.name + "', which is in no contact");
+        options.propagations.push_back({term, p.width, p.height});
+    }
+    if (!contacts.empty() && options.singleOctree) {
+        args.Warn("'contact' is ignored with 'method kb89' (one field, everything blends)");
     }
     OctreeSettings declared;
     declared.maxDepth = maxDepth;

@@ -39,7 +39,8 @@ bool Patch::Predominates(const Vec3& p) const {
 }
 
 std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode mode,
-                                const std::vector<std::pair<int, int>>& blendPairs) {
+                                const std::vector<std::pair<int, int>>& blendPairs,
+                                const std::vector<std::pair<int, int>>& separatePairs) {
     const int n = static_cast<int>(terms.size());
     std::vector<Bounds3> support(n);
     for (int i = 0; i < n; ++i) support[i] = TermSupportBounds(terms[i]);
@@ -100,6 +101,12 @@ std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode m
             }
         }
     }
+    auto separate = [&separatePairs](int i, int j) {
+        for (auto [a, b] : separatePairs) {
+            if ((a == i && b == j) || (a == j && b == i)) return true;
+        }
+        return false;
+    };
     std::vector<Patch> patches;
     for (int i = 0; i < n; ++i) {
         if (!(terms[i].weight > 0)) continue;
@@ -109,7 +116,8 @@ std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode m
         c.erase(std::unique(c.begin(), c.end()), c.end());
         std::vector<int> members{i};
         for (int j : c) {
-            if (j != i && BoxesOverlap(support[i], support[j])) members.push_back(j);
+            if (j == i || !BoxesOverlap(support[i], support[j]) || separate(i, j)) continue;
+            members.push_back(j);
         }
         patches.emplace_back(terms, std::move(members));
     }
