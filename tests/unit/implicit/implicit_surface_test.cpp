@@ -185,7 +185,7 @@ TEST(ImplicitSurface, ManyPatchesMatchTheSingleOctree) {
     }
     ImplicitSurface patches(terms, ImplicitOptions{});
     ImplicitOptions single;
-    single.singleOctree = true;
+    single.method = ImplicitMethod::Kb89;
     ImplicitSurface whole(terms, single);
     EXPECT_EQ(patches.PatchCount(), 150);
     int hits = 0;
