@@ -237,9 +237,11 @@ class RaySolver {
         // Support spans and breakpoints.
         std::vector<Real> breaks{t0, t1};
         spans_.assign(terms_.size(), {1, 0});
+        std::vector<int> met;  // the terms whose support box the ray meets in [t0, t1]
         for (size_t i = 0; i < terms_.size(); ++i) {
             double s0 = t0, s1 = t1;
             if (!TermSupportBounds(terms_[i]).ClipRay(ray_, s0, s1)) continue;
+            met.push_back(static_cast<int>(i));
             spans_[i] = {s0, s1};
             breaks.push_back(s0);
             breaks.push_back(s1);
@@ -251,10 +253,8 @@ class RaySolver {
             Real a = std::max(breaks[k], Real(t0)), b = std::min(breaks[k + 1], Real(t1));
             if (!(b > a)) continue;
             active_.clear();
-            for (size_t i = 0; i < terms_.size(); ++i) {
-                if (spans_[i].first <= b && spans_[i].second >= a) {
-                    active_.push_back(static_cast<int>(i));
-                }
+            for (int i : met) {
+                if (spans_[i].first <= b && spans_[i].second >= a) active_.push_back(i);
             }
             std::optional<Real> root = Search(Evaluate(a), Evaluate(b));
             if (root) return static_cast<double>(*root);
