@@ -629,7 +629,8 @@ TEST(RayQuery, PolynomialMethodOnBlobsOnly) {
         ExpectOnSphere(out[i], rays[i], {1, 2, 3}, r, expected[i], Describe(seed, i, rays[i]));
         EXPECT_EQ(out[i].patch, "-");
     }
-    RunResult wrong = RunText(SphereScene({0, 0, 0}, "field quadratic 0.8 1 2"), "", "-m polynomial");
+    RunResult wrong =
+        RunText(SphereScene({0, 0, 0}, "field quadratic 0.8 1 2"), "", "-m polynomial");
     EXPECT_EQ(wrong.status, 1);
     EXPECT_NE(wrong.stdErr.find("method polynomial needs point skeletons with the blob kernel"),
               std::string::npos)

@@ -304,7 +304,8 @@ class RaySolver {
             for (int j = 0; j < PartCount(term.skeleton); ++j) {
                 parts[j] = PartValue(term.skeleton, j, p);
             }
-            Real v = term.weight * KernelValue(term.kernel, DistanceFromParts(term.skeleton, parts));
+            Real d = DistanceFromParts(term.skeleton, parts);
+            Real v = term.weight * KernelValue(term.kernel, d);
             sum += v;
             absSum += std::abs(v);
         }

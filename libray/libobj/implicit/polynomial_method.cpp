@@ -13,10 +13,11 @@ std::string CheckPolynomialTerms(const std::vector<FieldTerm>& terms) {
     for (const FieldTerm& t : terms) {
         if (!std::holds_alternative<PointSkeleton>(t.skeleton) ||
             t.kernel.Kind() != KernelKind::Blob) {
+            const bool blob = t.kernel.Kind() == KernelKind::Blob;
             return StringPrintf("method polynomial needs point skeletons with the blob kernel "
                                 "('field blob ...'); skeleton '%s' is a %s%s",
                                 t.name.c_str(), SkeletonKindName(t.skeleton),
-                                t.kernel.Kind() == KernelKind::Blob ? "" : " with a Gascuel kernel");
+                                blob ? "" : " with a Gascuel kernel");
         }
     }
     return {};

@@ -120,8 +120,8 @@ TEST(ImplicitMethods, SegmentSkeletonCapsule) {
         auto method = Make(m, field, tol);
         Rng rng(kSeed + 2);
         for (int i = 0; i < 100; ++i) {
-            // Perpendicular to the axis through the cylindrical part: entry at 4 − sqrt(e² − h²)
-            // for a ray at height h above the axis.
+            // Perpendicular to the axis through the cylindrical part: entry at
+            // 4 − sqrt(e² − h²) for a ray at height h above the axis.
             double x = Uniform(rng, -0.9, 0.9), h = Uniform(rng, -0.9, 0.9) * e;
             double angle = Uniform(rng, 0, 6.283185307179586);
             Vec3 dir{0, std::cos(angle), std::sin(angle)};
@@ -230,13 +230,15 @@ TEST(ImplicitMethods, ExactFindsTangency) {
 TEST(ImplicitMethods, GrazingInsideHitsWithBoundMethods) {
     const double e = 0.8, tol = 1e-9;
     Field field = OnePoint(Kernel::GascuelQuadratic(e, 1, 2));
-    for (ImplicitMethod m : {ImplicitMethod::Sphere, ImplicitMethod::Segment, ImplicitMethod::Exact}) {
+    for (ImplicitMethod m :
+         {ImplicitMethod::Sphere, ImplicitMethod::Segment, ImplicitMethod::Exact}) {
         auto method = Make(m, field, tol);
         for (double rel : {1e-2, 1e-4, 1e-6}) {
             const double b = e * (1 - rel);
             std::optional<double> got = method->FirstRoot(Ray{{-5, b, 0}, {1, 0, 0}}, 0, 1e9);
             ASSERT_TRUE(got) << ImplicitMethodName(m) << " rel " << rel;
-            EXPECT_NEAR(*got, 5 - std::sqrt(e * e - b * b), m == ImplicitMethod::Exact ? 1e-12 : tol)
+            const double allowed = m == ImplicitMethod::Exact ? 1e-12 : tol;
+            EXPECT_NEAR(*got, 5 - std::sqrt(e * e - b * b), allowed)
                 << ImplicitMethodName(m) << " rel " << rel;
         }
     }
@@ -248,7 +250,8 @@ TEST(ImplicitMethods, MarchStepSkipsThinFeatures) {
     Field field = OnePoint(Kernel::GascuelQuadratic(0.05, 1, 0.1));
     Ray ray{{-3, 0, 0}, {1, 0, 0}};
     EXPECT_FALSE(Make(ImplicitMethod::March, field, 1e-9, 1, 0.5)->FirstRoot(ray, 0, 1e9));
-    std::optional<double> got = Make(ImplicitMethod::March, field, 1e-9, 1, 0.01)->FirstRoot(ray, 0, 1e9);
+    std::optional<double> got =
+        Make(ImplicitMethod::March, field, 1e-9, 1, 0.01)->FirstRoot(ray, 0, 1e9);
     ASSERT_TRUE(got);
     EXPECT_NEAR(*got, 2.95, 1e-9);
     EXPECT_DOUBLE_EQ(DefaultMarchStep(field), 0.25 * 0.05);
@@ -300,14 +303,15 @@ TEST(ImplicitMethods, ExactOtherSkeletonKinds) {
          3 - circleZ},
         {"circle plane", CircleSkeleton{{0, 0, 0}, {0, 0, 1}, 0.5}, Ray{{-4, 0, 0}, {1, 0, 0}},
          4 - 0.5 - e},
-        // Towards the polyline's corner along the bisector of its outer angle... from −y:
-        // the corner (0, 0, 0) is nearest, so the entry is at distance e from it.
+        // From −y at x = 0.2 the corner (0, 0, 0) is the nearest point of both segments,
+        // so the entry is at distance e from it.
         {"polyline corner", corner, Ray{{0.2, -5, 0}, {0, 1, 0}},
          5 - std::sqrt(e * e - 0.04)},
     };
     for (const Case& c : cases) {
         Field field({{"x", c.skeleton, k, 1}});
-        std::optional<double> got = Make(ImplicitMethod::Exact, field, 1e-7)->FirstRoot(c.ray, 0, 1e9);
+        std::optional<double> got =
+            Make(ImplicitMethod::Exact, field, 1e-7)->FirstRoot(c.ray, 0, 1e9);
         ASSERT_TRUE(got) << c.what;
         EXPECT_NEAR(*got, c.expect, 1e-12 * c.expect) << c.what;
     }
@@ -321,7 +325,8 @@ TEST(ImplicitMethods, ExactOtherSkeletonKinds) {
 // outward leaves the cavity where F rises through 1, below r = 1: compare with bisection
 // of the closed form.
 TEST(ImplicitMethods, ExactNegativeWeightsCarve) {
-    const Kernel outer = Kernel::GascuelQuadratic(1, 1, 2), inner = Kernel::GascuelQuadratic(0.5, 2, 1);
+    const Kernel outer = Kernel::GascuelQuadratic(1, 1, 2);
+    const Kernel inner = Kernel::GascuelQuadratic(0.5, 2, 1);
     Field field({{"pos", PointSkeleton{}, outer, 1}, {"neg", PointSkeleton{}, inner, -1}});
     auto f = [&](double r) { return outer.Value(r) - inner.Value(r) - 1; };
     double lo = 0, hi = 0.999;  // f(0) < 0 (F(0) = 0), f(0.999) > 0
