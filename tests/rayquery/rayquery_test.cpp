@@ -675,6 +675,26 @@ TEST(RayQuery, OctreeOverridesKeepTheAnswers) {
     EXPECT_GT(cells(deep.stdErr), cells(shallow.stdErr)) << shallow.stdErr << deep.stdErr;
 }
 
+// `method NAME` in a scene file, through the real parser (several method names, such as
+// sphere and segment, are keywords of the language).
+TEST(RayQuery, SceneMethodStatements) {
+    const std::vector<QueryRay> rays = {{{0, -5, 0}, {0, 1, 0}}};
+    for (const char* method :
+         {"patches", "kb89", "march", "march 0.1", "sphere", "segment", "exact"}) {
+        std::vector<QueryLine> out = RunQueries(
+            SphereScene({0, 0, 0}, "field quadratic 0.8 1 2", std::string("method ") + method),
+            rays);
+        ASSERT_TRUE(out[0].hit) << method;
+        EXPECT_NEAR(out[0].t, 4.2, 1e-8) << method;
+    }
+    RunResult bad =
+        RunText(SphereScene({0, 0, 0}, "field quadratic 0.8 1 2", "method cone"), "", "");
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.stdErr.find("expected a method after 'method': patches, kb89"),
+              std::string::npos)
+        << bad.stdErr;
+}
+
 TEST(RayQuery, BadOverridesAreRejected) {
     const std::string scene = SphereScene({0, 0, 0}, "field quadratic 0.8 1 2");
     struct Case {

@@ -349,11 +349,17 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             if (maxDepth < 0 || maxDepth > 16) args.Fail("octree depth must be in [0, 16]");
             if (args.PeekNumber()) dRatio = args.ReadNumber();
         } else if (args.Accept("method")) {
-            const std::string word = args.ReadName();
-            if (!ParseImplicitMethod(word, options.method)) {
-                args.Fail("unknown method '" + word + "' (expected " + ImplicitMethodNames() +
-                          ")");
+            // Accept() rather than a name: method words such as `sphere` are keywords of the
+            // scene language.
+            const MethodEntry* chosen = nullptr;
+            for (const MethodEntry& entry : MethodRegistry()) {
+                if (args.Accept(entry.name)) {
+                    chosen = &entry;
+                    break;
+                }
             }
+            if (!chosen) args.Fail("expected a method after 'method': " + ImplicitMethodNames());
+            options.method = chosen->method;
             if (options.method == ImplicitMethod::March && args.PeekNumber()) {
                 options.marchStep = args.ReadNumber();
                 if (!(options.marchStep > 0)) args.Fail("the march step must be > 0");
