@@ -232,8 +232,10 @@ class RaySolver {
     }
 
     std::optional<double> Solve(double t0, double t1) {
-        floor_ = ExactMethod::kFloor * std::max({Real(t1) - Real(t0), std::abs(Real(t0)),
-                                                 std::abs(Real(t1))});
+        const Real extent =
+            std::max({Real(t1) - Real(t0), std::abs(Real(t0)), std::abs(Real(t1))});
+        floor_ = ExactMethod::kFloor * extent;
+        window_ = ExactMethod::kTangencyWindow * extent;
         // Support spans and breakpoints.
         std::vector<Real> breaks{t0, t1};
         spans_.assign(terms_.size(), {1, 0});
@@ -252,6 +254,7 @@ class RaySolver {
         for (size_t k = 0; k + 1 < breaks.size(); ++k) {
             Real a = std::max(breaks[k], Real(t0)), b = std::min(breaks[k + 1], Real(t1));
             if (!(b > a)) continue;
+            pieceEnd_ = b;
             active_.clear();
             for (int i : met) {
                 if (spans_[i].first <= b && spans_[i].second >= a) active_.push_back(i);
@@ -386,8 +389,16 @@ class RaySolver {
         Real te = GoldenMinimum([&](Real t) { return toward * Value(t); }, a.t, b.t);
         Real ge = Value(te);
         if (ClassChanges(a.g, ge)) return Bisect(a.t, a.g, te, ge);
-        if (std::abs(ge) <= Tau(a, b)) return Accept(te);
-        return std::nullopt;
+        if (std::abs(ge) > Tau(a, b)) return std::nullopt;
+        // |g| <= τ here, but near a simple root where g' is tiny (a grazing ray just inside)
+        // that is true up to τ/|g'| before the root. Look over a wider window for the
+        // extremum: if g crosses there, the root is bisected; otherwise the tangency is
+        // located at the window's extremum.
+        const Real end = std::min(a.t + window_, pieceEnd_);
+        Real tw = GoldenMinimum([&](Real t) { return toward * Value(t); }, a.t, end);
+        Real gw = Value(tw);
+        if (ClassChanges(a.g, gw)) return Bisect(a.t, a.g, tw, gw);
+        return Accept(std::abs(gw) <= std::abs(ge) ? tw : te);
     }
 
     std::optional<Real> Search(const Sample& a, const Sample& b) {
@@ -449,7 +460,7 @@ class RaySolver {
     int partTotal_ = 0;
     std::vector<std::pair<Real, Real>> spans_;
     std::vector<int> active_;
-    Real floor_ = 0;
+    Real floor_ = 0, window_ = 0, pieceEnd_ = 0;
     long nodes_ = 0;
     bool exhausted_ = false;
 };

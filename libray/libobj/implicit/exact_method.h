@@ -30,8 +30,12 @@
 // min|g_end| > Gλ²/8 + τ and by that monotonicity; others split at the midpoint down to a
 // floor width of kFloor times the clipped ray's extent in t, where a sign change is bisected
 // and otherwise a golden-section search for the extremum of g toward zero finds either two
-// sign changes (the first is bisected) or a TANGENCY: |g| <= τ = 256·LDBL_EPSILON·(T + Σ|w f|)
-// there (a double root, reported as a hit at the extremum). Where G is infinite (a linear
+// sign changes (the first is bisected) or a candidate TANGENCY: |g| <= τ =
+// 256·LDBL_EPSILON·(T + Σ|w f|) there. Because |g| <= τ also holds up to τ/|g'| before a
+// simple root where g' is tiny (grazing rays just inside), a candidate is confirmed by a
+// second golden-section search over a window of kTangencyWindow times the extent: a sign
+// change there is bisected (the root), otherwise the window's extremum is the tangency (a
+// double root, reported as a hit). Where G is infinite (a linear
 // kernel's skeleton, a circle's axis, a polyline's kinks) only the enclosure prunes, and the
 // search is bounded by kMaxNodes per ray (then a warning, and the rest of the ray is a miss).
 //
@@ -48,6 +52,7 @@ class ExactMethod final : public IntersectionMethod {
   public:
     static constexpr long kMaxNodes = 4000000;
     static constexpr long double kFloor = 1e-13L;
+    static constexpr long double kTangencyWindow = 1e-7L;
 
     ExactMethod(const Field& field, const MethodParams& params);
     std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax) const override;
