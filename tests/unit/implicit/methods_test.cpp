@@ -244,6 +244,39 @@ TEST(ImplicitMethods, GrazingInsideHitsWithBoundMethods) {
     }
 }
 
+// Grazing the concave crease of an L-shaped polyline, where the field's G is infinite (two
+// segments equally near) and the exact solver prunes by its enclosures only. In the plane
+// x = −y the distance to both segments is sqrt(s² + z²) for the point (−s, s, z), s in
+// (0, 2), so the ray (−s0, s0, z0) + t(−1, 1, −1) meets d = e where
+// 2t² + 2(s0 − z0)t + s0² + z0² − e² = 0, i.e. t = (z0 − s0 − sqrt(2e² − (s0 + z0)²))/2
+// (evaluated in long double; s0 + z0 is exact there). Inside by 1e-6 to 1e-14 relative:
+// a hit to 1e-12 relative; outside by 1e-10: a miss.
+TEST(ImplicitMethods, ExactGrazingAPolylineCrease) {
+    const double e = 0.5;
+    PolylineSkeleton corner;
+    corner.points = {{-2, 0, 0}, {0, 0, 0}, {0, 2, 0}};
+    Field field({{"l", corner, Kernel::GascuelQuadratic(e, 1, 1.5), 1}});
+    auto exact = Make(ImplicitMethod::Exact, field, 1e-7);
+    for (double rel : {1e-6, 1e-9, 1e-12, 1e-14, -1e-10}) {
+        const double c = std::sqrt(2.0) * e * (1 - rel);
+        const double s0 = c / 2 - 3, z0 = c - s0;
+        const Ray ray{{-s0, s0, z0}, {-1, 1, -1}};
+        std::optional<double> got = exact->FirstRoot(ray, 0, 1e9);
+        const long double sum = static_cast<long double>(s0) + z0;
+        const long double disc = 2.0L * e * e - sum * sum;
+        if (rel < 0) {
+            ASSERT_LT(disc, 0);
+            EXPECT_FALSE(got) << rel;
+            continue;
+        }
+        ASSERT_GT(disc, 0) << rel;
+        ASSERT_TRUE(got) << rel;
+        const double expect =
+            static_cast<double>((static_cast<long double>(z0) - s0 - std::sqrt(disc)) / 2);
+        EXPECT_NEAR(*got, expect, 1e-12 * expect) << rel;
+    }
+}
+
 // The march step is the method's knob: a sphere of diameter 0.1 between two samples is
 // missed with a step of 0.5 and hit with a step of 0.01 (the documented non-guarantee).
 TEST(ImplicitMethods, MarchStepSkipsThinFeatures) {
