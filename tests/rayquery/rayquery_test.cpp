@@ -491,6 +491,64 @@ TEST(RayQuery, ExplicitBlendListsGiveUnionOfSpheres) {
     EXPECT_LT(merged[0].t, tSphere - 0.01);
 }
 
+// Two identical unit spheres (point skeletons, e = 1) at x = ±0.8 in contact, with bulges:
+// the contact surface is the symmetry plane x = 0 (libray/libobj/implicit/README.md,
+// Contact). From inside either sphere, rays through the contact disk (ρ < 0.6) in random
+// directions stop on the plane to the tolerance (1e-9; 1e-8 allows for the input
+// rounding). Rays lying in the plane find the rim circle ρ = 0.6, where the undeformed
+// spheres cross (f_a = f_b = 1 and the bulge term vanishes there): nothing of either
+// deformed surface crosses the plane outside the rim. Those rays are tangent to the
+// deformed surfaces at the rim (G1: the bulge leaves the rim tangent to the plane); in the
+// plane F − T = −u + δ(u) with u = 1 − f, which is −3u³/w² for b's height 1, so F − T stays
+// within rounding (1e-16) of 0 for u up to about 1e-6: the rim is found to 1e-5 only.
+TEST(RayQuery, ContactSurfaceOfTwoSpheresIsTheSymmetryPlane) {
+    const std::string scene = std::string(kSurface) +
+                              "name pair implicit s\n tolerance 1e-9\n point a -0.8 0 0\n"
+                              " point b 0.8 0 0\n contact a b\n propagation a 0.3\n"
+                              " propagation b 0.3 1\nend\nobject pair\n";
+    const uint64_t seed = 55;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<QueryRay> inside, inPlane;
+    while (inside.size() < 400) {
+        double side = inside.size() % 2 == 0 ? -1 : 1;
+        double phi = 2 * M_PI * unit(rng), rho = 0.55 * std::sqrt(unit(rng));
+        Vec3 target{0, rho * std::cos(phi), rho * std::sin(phi)};
+        Vec3 d = RandomUnit(rng);
+        if (d.x * side > 0) d = -d;  // from the `side` half towards the plane
+        if (std::abs(d.x) < 0.05) continue;
+        QueryRay r;
+        r.o = target - d * (0.1 / std::abs(d.x));
+        if (r.o.y * r.o.y + r.o.z * r.o.z > 0.3) continue;  // keep the start inside
+        r.d = d * std::uniform_real_distribution<double>(0.5, 2)(rng);
+        inside.push_back(r);
+    }
+    for (int i = 0; i < 200; ++i) {
+        double phi = 2 * M_PI * unit(rng);
+        Vec3 u{0, std::cos(phi), std::sin(phi)}, v{0, -u.z, u.y};
+        QueryRay r;
+        r.o = u * 4 + v * (0.5 * (unit(rng) - 0.5));  // offsets up to 0.25 from the axis
+        r.d = -u;
+        inPlane.push_back(r);
+    }
+    std::vector<QueryLine> out = RunQueries(scene, inside);
+    for (size_t i = 0; i < inside.size(); ++i) {
+        std::string what = Describe(seed, i, inside[i]);
+        ASSERT_TRUE(out[i].hit) << what;
+        EXPECT_LE(std::abs(out[i].p.x), 1e-8) << what;
+        EXPECT_NEAR(std::abs(out[i].n.x), 1, 1e-6) << what;
+        EXPECT_TRUE(out[i].patch == "a" || out[i].patch == "b") << what;
+    }
+    std::vector<QueryLine> rim = RunQueries(scene, inPlane);
+    for (size_t i = 0; i < inPlane.size(); ++i) {
+        std::string what = Describe(seed, 1000 + i, inPlane[i]);
+        ASSERT_TRUE(rim[i].hit) << what;
+        EXPECT_NEAR(std::sqrt(rim[i].p.y * rim[i].p.y + rim[i].p.z * rim[i].p.z), 0.6, 1e-5)
+            << what;
+        EXPECT_LE(std::abs(rim[i].p.x), 1e-8) << what;
+    }
+}
+
 TEST(RayQuery, BadInputIsReportedWithLineNumbers) {
     std::string scene = SphereScene({0, 0, 0}, "field quadratic 0.8 1 2");
     struct Case {

@@ -33,6 +33,7 @@ double Field::Value(const Vec3& p) const {
     for (const FieldTerm& t : terms_) {
         sum += t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
     }
+    if (deformation_) sum += deformation_->Value(p);
     return sum;
 }
 
@@ -45,6 +46,7 @@ Vec3 Field::Gradient(const Vec3& p) const {
         if (d <= 0 || d >= t.kernel.Radius()) continue;
         g += (p - closest) * (t.weight * t.kernel.Derivative(d) / d);
     }
+    if (deformation_) g += deformation_->Gradient(p);
     return g;
 }
 
@@ -69,6 +71,13 @@ FieldBound Field::Bound(const Bounds3& box) const {
         fb.G += w * curvature;
         fb.minDistance = std::min(fb.minDistance, r.min);
         ++fb.activeTerms;
+    }
+    if (deformation_) {
+        FieldBound db = deformation_->Bound(box);
+        fb.valueMin += db.valueMin;
+        fb.valueMax += db.valueMax;
+        fb.L += db.L;
+        fb.G += db.G;
     }
     return fb;
 }

@@ -13,8 +13,15 @@
 // max(|f''|, |f'|/r) over [rmin, rmax], and max|f'|·X when X > 0. The field is C¹ and
 // piecewise C², which is all the Taylor arguments of the LG tests need. Terms whose support
 // (d < R) misses the box contribute nothing; the others' bounds add, scaled by |w|.
+//
+// A field may carry one deformation D (contact.h: compression and propagation between
+// colliding patches): F(p) = Σ_i w_i f_i(d_i(p)) + D(p). Value, Gradient and Bound then add
+// D's value, gradient and bounds (value ranges, L and G of a sum add); the terms, TermValue,
+// TermRange and SupportBounds keep describing the undeformed terms alone (predominance is
+// decided on them).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -41,12 +48,27 @@ struct FieldBound {
     int activeTerms = 0;
 };
 
+// An extra C¹, piecewise C² term of a field. Bound(box) fills valueMin, valueMax, L and G
+// with the same contracts as Field::Bound, for the term alone.
+class FieldDeformation {
+  public:
+    virtual ~FieldDeformation() = default;
+    virtual double Value(const Vec3& p) const = 0;
+    virtual Vec3 Gradient(const Vec3& p) const = 0;
+    virtual FieldBound Bound(const Bounds3& box) const = 0;
+};
+
 class Field {
   public:
     Field() = default;
     explicit Field(std::vector<FieldTerm> terms) : terms_(std::move(terms)) {}
 
     const std::vector<FieldTerm>& Terms() const { return terms_; }
+    // Adds (or, with nullptr, removes) the deformation term.
+    void SetDeformation(std::shared_ptr<const FieldDeformation> deformation) {
+        deformation_ = std::move(deformation);
+    }
+    const FieldDeformation* Deformation() const { return deformation_.get(); }
     int Size() const { return static_cast<int>(terms_.size()); }
 
     // w_i f_i(d_i(p)).
@@ -65,6 +87,7 @@ class Field {
 
   private:
     std::vector<FieldTerm> terms_;
+    std::shared_ptr<const FieldDeformation> deformation_;
 };
 
 // The statistics counters of every Field (libcommon/stats.h), so callers can attribute

@@ -1,4 +1,4 @@
-// Layer 7 of the implicit module: command-line overrides of every implicit object's
+// Layer 8 of the implicit module: command-line overrides of every implicit object's
 // intersection settings (rayquery -m/-e/-d/-r/-k/-H, rayshade -M/-I/-K/-J/-B/-H).
 #pragma once
 

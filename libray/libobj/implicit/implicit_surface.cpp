@@ -131,8 +131,9 @@ constexpr const char* kSkeletonKinds[] = {"point",    "segment", "polyline", "ci
 }  // namespace
 
 bool ImplicitSurface::IsBlockWord(const std::string& word) {
-    static const char* const kStatements[] = {"threshold", "tolerance", "octree", "method",
-                                              "field",     "blend",     "end"};
+    static const char* const kStatements[] = {"threshold", "tolerance", "octree",
+                                              "method",    "field",     "blend",
+                                              "contact",   "propagation", "end"};
     for (const char* w : kStatements)
         if (word == w) return true;
     for (const char* w : kSkeletonKinds)
@@ -146,7 +147,8 @@ namespace {
 // name lists stop there.
 bool PeekStatement(ArgReader& args) {
     for (const char* word :
-         {"end", "threshold", "tolerance", "octree", "method", "field", "blend"}) {
+         {"end", "threshold", "tolerance", "octree", "method", "field", "blend", "contact",
+          "propagation"}) {
         if (args.Peek(word)) return true;
     }
     for (const char* kind : kSkeletonKinds) {
@@ -264,6 +266,7 @@ void ImplicitSurface::BuildStructures() {
     whole_ = Field(terms_);
     patches_.clear();
     trees_.clear();
+    contacts_.clear();
     bounds_ = Bounds3();
     baseline_.reset();
     const double threshold = options_.threshold;
@@ -284,11 +287,17 @@ void ImplicitSurface::BuildStructures() {
         trees_.emplace_back(whole_, threshold, bounds_, options_.octree);
         return;
     }
-    patches_ = BuildPatches(terms_, options_.blendMode, options_.blendPairs);
+    std::vector<std::pair<int, int>> separate;
+    for (const ContactPair& c : options_.contacts) separate.emplace_back(c.a, c.b);
+    patches_ = BuildPatches(terms_, options_.blendMode, options_.blendPairs, separate);
     trees_.reserve(patches_.size());
     for (const Patch& p : patches_) {
         trees_.push_back(BuildPatchOctree(p, threshold, options_.octree));
         bounds_.Extend(p.Box());
+    }
+    if (!options_.contacts.empty()) {
+        contacts_ = ApplyContacts(terms_, options_.contacts, options_.propagations, threshold,
+                                  options_.octree, patches_, trees_);
     }
     bvh_.clear();
     bvhOrder_.resize(patches_.size());
@@ -337,6 +346,12 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     std::vector<ElementSpec> elements;
     std::map<std::string, int> index;
     std::vector<std::vector<std::string>> blends;
+    std::vector<std::pair<std::string, std::string>> contacts;
+    struct PropagationSpec {
+        std::string name;
+        double width = 0, height = 0.5;
+    };
+    std::vector<PropagationSpec> propagations;
     while (!args.Accept("end")) {
         if (args.Accept("threshold")) {
             options.threshold = args.ReadNumber();
@@ -370,6 +385,21 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             std::vector<std::string> names{args.ReadName(), args.ReadName()};
             while (!PeekStatement(args)) names.push_back(args.ReadName());
             blends.push_back(std::move(names));
+        } else if (args.Accept("contact")) {
+            std::string a = args.ReadName();
+            contacts.emplace_back(a, args.ReadName());
+        } else if (args.Accept("propagation")) {
+            PropagationSpec p;
+            p.name = args.ReadName();
+            p.width = args.ReadNumber();
+            if (!(p.width >= 0)) args.Fail("propagation width must be >= 0");
+            if (args.PeekNumber()) {
+                p.height = args.ReadNumber();
+                if (!(p.height >= 0 && p.height <= 1)) {
+                    args.Fail("propagation height must be in [0, 1]");
+                }
+            }
+            propagations.push_back(p);
         } else {
             ElementSpec e;
             for (const char* kind : kSkeletonKinds) {
@@ -380,7 +410,8 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             }
             if (e.kind.empty()) {
                 args.Fail("expected a skeleton (point, segment, polyline, circle, triangle, box, "
-                          "cylinder), blend, field, threshold, tolerance, octree, method or end");
+                          "cylinder), blend, contact, propagation, field, threshold, tolerance, "
+                          "octree, method or end");
             }
             e.name = args.ReadName();
             if (index.count(e.name)) args.Fail("skeleton name '" + e.name + "' used twice");
@@ -428,6 +459,34 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     }
     if (!blends.empty() && options.method != ImplicitMethod::Patches) {
         args.Warn(StringPrintf("'blend' is ignored with 'method %s' (one field, everything "
+                               "blends)",
+                               ImplicitMethodName(options.method)));
+    }
+    for (const auto& [a, b] : contacts) {
+        for (const std::string& n : {a, b}) {
+            if (!index.count(n)) args.Fail("contact names unknown skeleton '" + n + "'");
+        }
+        if (a == b) args.Fail("contact needs two different skeletons, not '" + a + "' twice");
+        int ia = index[a], ib = index[b];
+        for (auto [x, y] : options.blendPairs) {
+            if ((x == ia && y == ib) || (x == ib && y == ia)) {
+                args.Fail("skeletons '" + a + "' and '" + b + "' both blend and are in contact");
+            }
+        }
+        options.contacts.push_back({ia, ib});
+    }
+    for (const PropagationSpec& p : propagations) {
+        if (!index.count(p.name)) args.Fail("propagation names unknown skeleton '" + p.name + "'");
+        int term = index[p.name];
+        bool inContact = std::any_of(options.contacts.begin(), options.contacts.end(),
+                                     [term](const ContactPair& c) {
+                                         return c.a == term || c.b == term;
+                                     });
+        if (!inContact) args.Warn("propagation of '" + p.name + "', which is in no contact");
+        options.propagations.push_back({term, p.width, p.height});
+    }
+    if (!contacts.empty() && options.method != ImplicitMethod::Patches) {
+        args.Warn(StringPrintf("'contact' is ignored with 'method %s' (one field, everything "
                                "blends)",
                                ImplicitMethodName(options.method)));
     }

@@ -1,4 +1,4 @@
-// Layer 7 of the implicit module: the `implicit` primitive (Gascuel 1995, "Implicit
+// Layer 8 of the implicit module: the `implicit` primitive (Gascuel 1995, "Implicit
 // Patches"), the only file of the module that knows libobj. Compiled into ray_obj.
 //
 // Scene syntax, after `implicit [surface]`, until `end` (see README.md in this folder):
@@ -24,6 +24,12 @@
 //                          blend statement all overlapping skeletons blend (automatic
 //                          neighbour lists); with one or more, only declared pairs do
 //                          (a negative skeleton then carves only those it blends with).
+//   contact NameA NameB    the patches of skeletons NameA and NameB collide (contact.h): they
+//                          never blend, and each is deformed by the other's field so both
+//                          surfaces meet exactly on the contact surface (compression)
+//   propagation Name Width [Height]   gives Name's patch an attenuation zone of geometric
+//                          width Width >= 0 around its contact zone, with a smooth bulge of
+//                          relative height Height in [0, 1] (default 0.5); see contact.h
 //   end
 // Skeleton numbers, weights and field parameters may be animated expressions; the object
 // is then rebuilt by PrepareFrame for each frame (Bounds() describes the current frame).
@@ -43,6 +49,7 @@
 #include <vector>
 
 #include "libcommon/arg_reader.h"
+#include "libobj/implicit/contact.h"
 #include "libobj/implicit/implicit_overrides.h"
 #include "libobj/implicit/lg_octree.h"
 #include "libobj/implicit/method_registry.h"
@@ -63,6 +70,9 @@ struct ImplicitOptions {
     // The declared blend graph; used only in patches mode.
     BlendMode blendMode = BlendMode::Automatic;
     std::vector<std::pair<int, int>> blendPairs;  // term indices, Explicit mode only
+    // Colliding patches and their attenuation zones (contact.h); patches mode only.
+    std::vector<ContactPair> contacts;
+    std::vector<Propagation> propagations;
 };
 
 class ImplicitSurface final : public Primitive {
@@ -89,6 +99,9 @@ class ImplicitSurface final : public Primitive {
 
     const std::vector<FieldTerm>& Terms() const { return terms_; }
     int PatchCount() const { return static_cast<int>(patches_.size()); }
+    // What the contacts did to the patches in the current frame (contact.h; empty without
+    // contacts or in kb89 mode).
+    const std::vector<DeformedPatch>& Contacts() const { return contacts_; }
 
     ImplicitMethod Method() const { return options_.method; }
     // Switches the intersection method (and the octree heuristics that go with it, keeping
@@ -137,6 +150,7 @@ class ImplicitSurface final : public Primitive {
     std::vector<LGOctree> trees_;  // one per patch, or the single octree
     // The baseline method (march, sphere, ...) over whole_, when the method has a factory.
     std::unique_ptr<IntersectionMethod> baseline_;
+    std::vector<DeformedPatch> contacts_;
     Field whole_;                   // the plain sum (normals in single-octree mode)
     Bounds3 bounds_;
     std::vector<BvhNode> bvh_;  // root at 0 when there are patches

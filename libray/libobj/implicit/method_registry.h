@@ -1,4 +1,4 @@
-// Layer 7 of the implicit module (compiled into ray_obj): the registry of intersection
+// Layer 8 of the implicit module (compiled into ray_obj): the registry of intersection
 // methods, name → factory, so the primitive and the command-line overrides dispatch through
 // one table. The octree methods (patches, kb89) are built by ImplicitSurface itself and have
 // no factory; the baselines (intersection_method.h) are made by theirs.

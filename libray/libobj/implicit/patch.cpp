@@ -36,7 +36,8 @@ bool Patch::Predominates(const Vec3& p) const {
 }
 
 std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode mode,
-                                const std::vector<std::pair<int, int>>& blendPairs) {
+                                const std::vector<std::pair<int, int>>& blendPairs,
+                                const std::vector<std::pair<int, int>>& separatePairs) {
     int n = static_cast<int>(terms.size());
     std::vector<Bounds3> support(n);
     for (int i = 0; i < n; ++i) support[i] = TermSupportBounds(terms[i]);
@@ -48,6 +49,12 @@ std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode m
             blends[a][b] = blends[b][a] = true;
         }
     }
+    auto separate = [&separatePairs](int i, int j) {
+        for (auto [a, b] : separatePairs) {
+            if ((a == i && b == j) || (a == j && b == i)) return true;
+        }
+        return false;
+    };
     std::vector<Patch> patches;
     for (int i = 0; i < n; ++i) {
         if (!(terms[i].weight > 0)) continue;
@@ -55,6 +62,7 @@ std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode m
         for (int j = 0; j < n; ++j) {
             if (j == i || !BoxesOverlap(support[i], support[j])) continue;
             if (mode == BlendMode::Explicit && !blends[i][j]) continue;
+            if (separate(i, j)) continue;
             members.push_back(j);
         }
         patches.emplace_back(terms, std::move(members));

@@ -23,6 +23,7 @@
 // them.
 #pragma once
 
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -43,6 +44,11 @@ class Patch {
 
     // Whether the own term predominates at p (ties to the lowest global index).
     bool Predominates(const Vec3& p) const;
+    // Adds a deformation term to the patch field (contact.h); predominance, members and box
+    // are unchanged.
+    void Deform(std::shared_ptr<const FieldDeformation> deformation) {
+        field_.SetDeformation(std::move(deformation));
+    }
 
   private:
     std::vector<int> members_;
@@ -54,7 +60,9 @@ enum class BlendMode { Automatic, Explicit };
 
 // Builds one patch per positive-weight term. In Explicit mode `blendPairs` lists the term
 // index pairs that blend (symmetric; others are ignored); in Automatic mode it is unused.
+// `separatePairs` (symmetric) never blend, in either mode: the pairs in contact (contact.h).
 std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode mode,
-                                const std::vector<std::pair<int, int>>& blendPairs = {});
+                                const std::vector<std::pair<int, int>>& blendPairs = {},
+                                const std::vector<std::pair<int, int>>& separatePairs = {});
 
 }  // namespace rs

@@ -1,4 +1,4 @@
-// Layer 7 of the implicit module (compiled into ray_obj, beside the primitive): the
+// Layer 8 of the implicit module (compiled into ray_obj, beside the primitive): the
 // per-interval polynomial method of Rayshade 4.0's blob primitive (`method polynomial`), a
 // baseline on the plain sum (intersection_method.h). It lives at this layer because it uses
 // libobj's polynomial solver (libobj/polynomial.h), which the pure-math target ray_implicit

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -329,6 +330,133 @@ TEST(ImplicitSurface, ExampleRingEndsDoNotBlend) {
     auto t = Hit(*ring, {{0, -5, 0.5724}, {0, 1, 0}});
     ASSERT_TRUE(t.has_value());
     EXPECT_NEAR(*t, 5 - std::sqrt(0.42 * 0.42 - 0.4104 * 0.4104), 1e-6);
+}
+
+}  // namespace
+}  // namespace rs
+
+namespace rs {
+namespace {
+
+// Two unit spheres (default kernel: e = 1, R = 2) centred at x = ±0.8, in contact.
+constexpr const char* kContactPair =
+    "point a -0.8 0 0 point b 0.8 0 0 contact a b propagation a 0.3 propagation b 0.3 0.5 end";
+
+TEST(ImplicitContact, StatementsParseAndFailLocated) {
+    auto p = Parse(kContactPair);
+    ASSERT_TRUE(p);
+    EXPECT_EQ(static_cast<ImplicitSurface&>(*p).PatchCount(), 2);
+    for (const char* bad : {"point a 0 0 0 contact a c end", "point a 0 0 0 contact a a end",
+                            "point a 0 0 0 point b 1 0 0 blend a b contact a b end",
+                            "point a 0 0 0 point b 1 0 0 contact a b propagation a -1 end",
+                            "point a 0 0 0 point b 1 0 0 contact a b propagation a 1 2 end",
+                            "point a 0 0 0 point b 1 0 0 contact a b propagation c 1 end"}) {
+        TokenReader reader(bad);
+        EXPECT_THROW(ImplicitSurface::Create(reader), FatalError) << bad;
+    }
+    TokenReader lonely("point a 0 0 0 point b 3 0 0 propagation a 0.2 end");
+    EXPECT_TRUE(ImplicitSurface::Create(lonely));
+    EXPECT_EQ(lonely.warnings.size(), 1u);
+}
+
+// From inside either sphere, in any direction through the contact disk, the first hit is on
+// the symmetry plane to the tolerance (1e-7). From outside, the rim is where the undeformed
+// spheres cross (x = 0, ρ = 0.6): there f_a = f_b = 1 and the bulge term is 0.
+TEST(ImplicitContact, SymmetricSpheresMeetOnTheSymmetryPlane) {
+    auto p = Parse(kContactPair);
+    ASSERT_TRUE(p);
+    for (int i = 0; i < 400; ++i) {
+        double phi = 2 * 3.14159265358979 * i / 400, r = 0.5 * (i % 7) / 6;
+        Vec3 target{0, r * std::cos(phi), r * std::sin(phi)};
+        for (double side : {-1.0, 1.0}) {
+            Vec3 origin{0.05 * side, target.y * 0.5, target.z * 0.5 + 0.01 * (i % 3)};
+            Ray ray{origin, Normalize(target - origin)};
+            PrimitiveHit hit;
+            auto t = Hit(*p, ray, &hit);
+            ASSERT_TRUE(t.has_value()) << i;
+            EXPECT_LE(std::abs(ray.At(*t).x), 1e-7) << i;
+            Vec3 n = p->Normal(ray.At(*t), hit).geometric;
+            // Leaving one sphere and entering the other at the same point (either patch may
+            // report it): the normal is ±x.
+            EXPECT_NEAR(std::abs(n.x), 1, 1e-6) << i;
+        }
+    }
+    auto rim = Hit(*p, {{0, -5, 0}, {0, 1, 0}});
+    ASSERT_TRUE(rim.has_value());
+    EXPECT_NEAR(*rim, 4.4, 1e-7);
+    // The far sides are untouched spheres.
+    EXPECT_NEAR(*Hit(*p, {{-5, 0, 0}, {1, 0, 0}}), 3.2, 1e-7);
+}
+
+// Contacts follow animated skeletons: b moves from interpenetration (t = 0.8) to a gap of
+// 0.1 (t = 1.3), narrower than the zone; the bulge switches off and a is a plain sphere.
+TEST(ImplicitContact, ContactFollowsAnimation) {
+    auto p = Parse("point a -0.8 0 0 point b TIME 0 0 contact a b propagation a 0.3 "
+                   "propagation b 0.3 end");
+    ASSERT_TRUE(p);
+    p->PrepareFrame(0.8);
+    EXPECT_NEAR(*Hit(*p, {{0, -5, 0}, {0, 1, 0}}), 4.4, 1e-7);
+    p->PrepareFrame(1.3);
+    Ray between{{0.25, 0, 0}, {-1, 0, 0}};  // in the gap, towards a's surface at x = 0.2
+    EXPECT_NEAR(*Hit(*p, between), 0.05, 1e-7);
+    // In that frame a point of the gap between the two undeformed spheres is outside both.
+    EXPECT_NEAR(*Hit(*p, {{0.25, 0, 0}, {1, 0, 0}}), 0.05, 1e-7);
+}
+
+// The wire boxes drawn in examples/implicit/fig7.ray are the deformation boxes of its
+// deformed patches (DeformedPatch::affected), rounded outward to 0.01, as its comment says.
+TEST(ImplicitContact, Figure7BoxesAreTheDeformationBoxes) {
+    std::ifstream in(RAYSHADE_SOURCE_DIR "/examples/implicit/fig7.ray");
+    ASSERT_TRUE(in.good());
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string scene = text.str();
+    size_t begin = scene.find("implicit clay");
+    ASSERT_NE(begin, std::string::npos);
+    begin += std::string("implicit clay").size();
+    size_t end = scene.find("\nend", begin);
+    ASSERT_NE(end, std::string::npos);
+    std::string block = scene.substr(begin, end + 4 - begin);
+    for (char& c : block) {
+        if (c == '\n' || c == '\t') c = ' ';
+    }
+    auto p = Parse(block);
+    ASSERT_TRUE(p);
+    const auto& surface = static_cast<const ImplicitSurface&>(*p);
+    // The boxes in the file, one per "deformation box of NAME" comment, from the corners of
+    // the wire cylinders that follow it.
+    std::map<std::string, Bounds3> drawn;
+    std::string current;
+    std::istringstream lines(scene);
+    std::string line;
+    while (std::getline(lines, line)) {
+        const std::string marker = "/* deformation box of ";
+        if (line.rfind(marker, 0) == 0) {
+            current = line.substr(marker.size(), line.find(' ', marker.size()) - marker.size());
+        } else if (line.rfind("cylinder wire", 0) == 0) {
+            std::istringstream numbers(line.substr(std::string("cylinder wire").size()));
+            double r;
+            Vec3 a, b;
+            numbers >> r >> a.x >> a.y >> a.z >> b.x >> b.y >> b.z;
+            drawn[current].Extend(a);
+            drawn[current].Extend(b);
+        }
+    }
+    int deformed = 0;
+    for (const DeformedPatch& d : surface.Contacts()) {
+        if (!d.deformed) continue;
+        ++deformed;
+        std::string name = surface.Terms()[d.patch].name;  // one patch per term here
+        ASSERT_TRUE(drawn.count(name)) << name;
+        const Bounds3& box = drawn[name];
+        for (int axis = 0; axis < 3; ++axis) {  // rounded outward by less than 0.01
+            EXPECT_LE(box.lo[axis], d.affected.lo[axis] + 1e-6) << name;
+            EXPECT_GT(box.lo[axis], d.affected.lo[axis] - 0.01) << name;
+            EXPECT_GE(box.hi[axis], d.affected.hi[axis] - 1e-6) << name;
+            EXPECT_LT(box.hi[axis], d.affected.hi[axis] + 0.01) << name;
+        }
+    }
+    EXPECT_EQ(deformed, static_cast<int>(drawn.size()));
 }
 
 }  // namespace
