@@ -236,6 +236,7 @@ class RaySolver {
             std::max({Real(t1) - Real(t0), std::abs(Real(t0)), std::abs(Real(t1))});
         floor_ = ExactMethod::kFloor * extent;
         window_ = ExactMethod::kTangencyWindow * extent;
+        tEnd_ = t1;
         // Support spans and breakpoints.
         std::vector<Real> breaks{t0, t1};
         spans_.assign(terms_.size(), {1, 0});
@@ -391,13 +392,18 @@ class RaySolver {
         if (ClassChanges(a.g, ge)) return Bisect(a.t, a.g, te, ge);
         if (std::abs(ge) > Tau(a, b)) return std::nullopt;
         // |g| <= τ here, but near a simple root where g' is tiny (a grazing ray just inside)
-        // that is true up to τ/|g'| before the root. Look over a wider window for the
-        // extremum: if g crosses there, the root is bisected; otherwise the tangency is
-        // located at the window's extremum.
+        // that is true up to τ/|g'| before the root. Look over a wider window, within the
+        // piece, for the extremum: if g crosses there, the root is bisected; if g still
+        // approaches zero at the piece's end, the next piece decides (its first floor
+        // interval repeats this from there; a tangency exactly at the break is found there,
+        // g moving away from zero); otherwise the tangency is the window's extremum.
         const Real end = std::min(a.t + window_, pieceEnd_);
         Real tw = GoldenMinimum([&](Real t) { return toward * Value(t); }, a.t, end);
         Real gw = Value(tw);
         if (ClassChanges(a.g, gw)) return Bisect(a.t, a.g, tw, gw);
+        const bool atCutEnd = end == pieceEnd_ && pieceEnd_ < tEnd_ &&
+                              end - tw <= 8 * LDBL_EPSILON * std::abs(end);
+        if (atCutEnd) return std::nullopt;
         return Accept(std::abs(gw) <= std::abs(ge) ? tw : te);
     }
 
@@ -460,7 +466,7 @@ class RaySolver {
     int partTotal_ = 0;
     std::vector<std::pair<Real, Real>> spans_;
     std::vector<int> active_;
-    Real floor_ = 0, window_ = 0, pieceEnd_ = 0;
+    Real floor_ = 0, window_ = 0, pieceEnd_ = 0, tEnd_ = 0;
     long nodes_ = 0;
     bool exhausted_ = false;
 };
