@@ -4,15 +4,18 @@
 // Scene syntax, after `implicit [surface]`, until `end` (see README.md in this folder):
 //   threshold T            iso-value (default 1; must be > 0). Inside: F > T.
 //   tolerance auto|Eps     root accuracy. auto (default): an eighth of the ray's footprint
-//                          (ray.h; the pixel's width at the hit for rendered rays), and
-//                          1e-7 in object-space distance on rays without one; Eps: fixed,
-//                          in object-space distance
-//   octree auto|MaxDepth [Dratio]   octree depth: auto (default) from each skeleton's
-//                          thickness (AutoMinDepth), or the depth limit (then 6 down to
-//                          minimum depth 3); and Gascuel's Dratio (2)
-//   method patches|kb89    patches (default): one LG octree per implicit patch, improved
+//                          (ray.h; the pixel's width at the hit for rendered rays) capped at
+//                          1e-6, and 1e-7 in object-space distance on rays without one (the
+//                          baselines always use 1e-7); Eps: fixed, in object-space distance
+//   octree auto|MaxDepth [Dratio]   octree depth: auto (default, patches) from each
+//                          skeleton's thickness (AutoMinDepth), or the depth limit (6 for
+//                          auto with kb89) with minimum depth 3; and Gascuel's Dratio (2)
+//   method patches|kb89|march [Step]|sphere|segment|polynomial|exact
+//                          patches (default): one LG octree per implicit patch, improved
 //                          heuristics; kb89: one octree over the whole sum with Kalra &
-//                          Barr's heuristics only (blend statements are then ignored)
+//                          Barr's heuristics only; the others are the baselines of
+//                          method_registry.h on the plain sum (README.md, "Methods"). Blend
+//                          statements are ignored by every method but patches.
 //   field linear|quadratic Thickness Stiffness Radius  |  field blob Strength Radius
 //                          default kernel of the skeletons that follow (initially
 //                          `field quadratic 1 1 2`)
@@ -59,27 +62,26 @@
 
 #include "libcommon/arg_reader.h"
 #include "libobj/implicit/contact.h"
+#include "libobj/implicit/implicit_overrides.h"
+#include "libobj/implicit/lg_octree.h"
+#include "libobj/implicit/method_registry.h"
 #include "libobj/primitive.h"
 
 namespace rs {
 
-enum class ImplicitMethod { Patches, Kb89 };
-
-// "patches" / "kb89" <-> ImplicitMethod; ParseImplicitMethod returns false on other words.
-bool ParseImplicitMethod(const std::string& word, ImplicitMethod& method);
-const char* ImplicitMethodName(ImplicitMethod method);
-
 struct ImplicitOptions {
     double threshold = 1;
-    // The search and build settings of the current method.
+    // The search and build settings of the octree methods; octree.tolerance is every
+    // method's root accuracy.
     OctreeSettings octree;
     // Gascuel's Dratio as declared, restored when the method becomes Patches again.
     double patchesDRatio = 2;
     // `octree auto` (the scene default): each patch's octree depth from its own skeleton's
     // thickness (ImplicitSurface::AutoMinDepth); otherwise octree.minDepth and maxDepth.
     bool autoDepth = false;
-    // One octree over the plain sum instead of patches (the "kb89" method).
-    bool singleOctree = false;
+    ImplicitMethod method = ImplicitMethod::Patches;
+    // The march step (object-space distance); <= 0: DefaultMarchStep.
+    double marchStep = 0;
     // The declared blend graph; used only in patches mode.
     BlendMode blendMode = BlendMode::Automatic;
     std::vector<std::pair<int, int>> blendPairs;  // term indices, Explicit mode only
@@ -120,12 +122,16 @@ class ImplicitSurface final : public Primitive {
     // contacts or in kb89 mode).
     const std::vector<DeformedPatch>& Contacts() const { return contacts_; }
 
-    ImplicitMethod Method() const;
+    ImplicitMethod Method() const { return options_.method; }
     // Switches the intersection method (and the octree heuristics that go with it, keeping
-    // the declared depth, Dratio and tolerance) and rebuilds. Used by command-line overrides.
-    void SetMethod(ImplicitMethod method);
+    // the declared depth, Dratio and tolerance) and rebuilds. Returns an error message,
+    // leaving the object unchanged, when the method cannot serve its terms (polynomial).
+    std::string SetMethod(ImplicitMethod method);
+    // Applies command-line overrides (the method first, then depth, Dratio, tolerance, step
+    // and the octree switches) and rebuilds once; an error as for SetMethod.
+    std::string ApplyOverrides(const ImplicitOverrides& overrides);
     // The name of the skeleton owning the patch of a hit, or empty when the hit carries no
-    // patch (kb89: one field for the whole object).
+    // patch (every method but patches: one field for the whole object).
     std::string PatchName(const PrimitiveHit& hit) const;
     // "Implicit object N", the prefix of this object's statistics counters.
     const std::string& Label() const { return label_; }
@@ -181,6 +187,8 @@ class ImplicitSurface final : public Primitive {
     // Per-object counters fed by lazy builds ("<label>: octree ...", "preprocessing ..."),
     // registered on first use; index as BuildCounterSources(), -1 until registered.
     std::unique_ptr<std::atomic<CounterId>[]> buildCounterIds_;
+    // The baseline method (march, sphere, ...) over whole_, when the method has a factory.
+    std::unique_ptr<IntersectionMethod> baseline_;
     std::vector<DeformedPatch> contacts_;
     Field whole_;                   // the plain sum (normals in single-octree mode)
     Bounds3 bounds_;
