@@ -735,6 +735,39 @@ TEST(RayQuery, OctreeOverridesKeepTheAnswers) {
     EXPECT_GT(cells(deep.stdErr), cells(shallow.stdErr)) << shallow.stdErr << deep.stdErr;
 }
 
+// -f gives every query ray a footprint: `tolerance auto` (the default) then keeps each root
+// within an eighth of the footprint at the hit (capped at 1e-6 in units of t, never finer
+// than 1e-7 in distance), and a fixed `-e` ignores it. A sphere of radius e = 0.8 seen from distance 6 along unit directions.
+TEST(RayQuery, FootprintSetsTheAutomaticTolerance) {
+    std::mt19937_64 rng(7);
+    std::vector<QueryRay> rays;
+    std::vector<double> expected;
+    const double e = 0.8;
+    for (int i = 0; i < 30; ++i) {
+        double b = std::uniform_real_distribution<double>(0, 0.9)(rng) * e;
+        double scale;
+        rays.push_back(RayPassing({0, 0, 0}, b, 6, rng, scale));
+        expected.push_back((6 - std::sqrt(e * e - b * b)) / scale);
+    }
+    const std::string scene = SphereScene({0, 0, 0}, "field quadratic 0.8 1 2");
+    for (const char* args : {"-f 1e-6", "-f 1e-7 2e-6", "-f 0.01 -e 1e-9"}) {
+        std::vector<QueryLine> out = RunQueries(scene, rays, args);
+        ASSERT_EQ(out.size(), rays.size());
+        for (size_t i = 0; i < rays.size(); ++i) {
+            ASSERT_TRUE(out[i].hit) << args << " ray " << i;
+            const double length = Length(rays[i].d), distance = expected[i] * length;
+            double tolerance = 1e-9;  // in distance: -e 1e-9
+            if (std::string(args) == "-f 1e-6") tolerance = 0.125 * 1e-6 * distance;
+            if (std::string(args) == "-f 1e-7 2e-6") tolerance = 0.125 * (2e-6 + 1e-7 * distance);
+            // The cap 1e-6 is in units of t; rounding of the printed inputs adds ~1e-12.
+            if (tolerance != 1e-9) tolerance = std::max(std::min(tolerance, 1e-6 * length), 1e-7);
+            EXPECT_NEAR(out[i].t * length, distance, tolerance + 1e-11) << args << " ray " << i;
+        }
+    }
+    RunResult bad = RunText(scene, "", "-f -1");
+    EXPECT_NE(bad.status, 0);
+}
+
 // `method NAME` in a scene file, through the real parser (several method names, such as
 // sphere and segment, are keywords of the language).
 TEST(RayQuery, SceneMethodStatements) {
