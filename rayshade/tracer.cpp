@@ -86,27 +86,30 @@ const Surface& Tracer::UntexturedSurface(const HitRecord& hit) const {
 Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool textured,
                                       SampleState& sample) const {
     // Transforms along the path at the ray's time; path[0] is the primitive's node. Static
-    // lists are referenced, animated ones evaluated into `animated`.
+    // lists are referenced, animated ones evaluated into `animated`. Textures are applied
+    // up to path[lastTextured]; beyond it only the normals still need mapping.
     // (No default-constructed Transform arrays here: this runs for every shaded hit.)
     const Transform* nodeTransforms[HitRecord::kMaxPath];
     std::vector<Transform> animated;
-    Transform worldFromPrimitive;
+    int lastTextured = -1;
     for (int i = 0; i < hit.pathLength; ++i) {
+        if (textured && !hit.path[i]->textures.empty()) lastTextured = i;
         const TransformList& list = hit.path[i]->parentFromObject;
         if (list.IsIdentity()) {
             nodeTransforms[i] = nullptr;
-            continue;
-        }
-        if (list.IsAnimated()) {
+        } else if (list.IsAnimated()) {
             if (animated.empty()) animated.reserve(hit.pathLength);  // keeps pointers stable
             animated.push_back(list.At(ray.time));
             nodeTransforms[i] = &animated.back();
         } else {
             nodeTransforms[i] = &list.Static();
         }
-        worldFromPrimitive = worldFromPrimitive.Then(*nodeTransforms[i]);
     }
-    const Ray rayPrimitive = worldFromPrimitive.InverseRay(ray);
+    // The ray in the primitive's space, mapped down the path node by node as
+    // Object::Intersect mapped it (so the hit point is the one that was found).
+    Ray rayPrimitive = ray;
+    for (int i = hit.pathLength - 1; i >= 0; --i)
+        if (nodeTransforms[i]) rayPrimitive = nodeTransforms[i]->InverseRay(rayPrimitive);
     const Vec3 pPrimitive = rayPrimitive.At(hit.t());
     const SurfaceNormals normals = hit.primitive->Normal(pPrimitive, hit.prim);
 
@@ -115,8 +118,8 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
     sp.smooth = normals.smooth;
 
     Vec3 p = pPrimitive, n = normals.shading, ng = normals.geometric;
-    if (textured) {
-        TextureContext ctx;
+    TextureContext ctx;
+    if (lastTextured >= 0) {
         ctx.primitive = hit.primitive;
         ctx.primitiveHit = hit.prim;
         ctx.pointPrimitive = pPrimitive;
@@ -127,27 +130,26 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
         ctx.sampleNumber = sample.sampleNumber;
         ctx.samplesPerSide = sample.samplesPerSide;
         ctx.rng = sample.rng;
-        for (int i = 0; i < hit.pathLength; ++i) {
-            if (nodeTransforms[i]) {
-                const Transform& t = *nodeTransforms[i];
+    }
+    for (int i = 0; i < hit.pathLength; ++i) {
+        const bool texturing = i <= lastTextured;
+        if (nodeTransforms[i]) {
+            const Transform& t = *nodeTransforms[i];
+            n = Normalize(t.ApplyNormal(n));
+            ng = Normalize(t.ApplyNormal(ng));
+            if (texturing) {
                 p = t.ApplyPoint(p);
-                n = Normalize(t.ApplyNormal(n));
-                ng = Normalize(t.ApplyNormal(ng));
                 ctx.nodeFromPrimitive = ctx.nodeFromPrimitive.Then(t);
             }
-            if (hit.path[i]->textures.empty()) continue;
-            ctx.point = p;
-            ctx.normal = n;
-            ctx.geometricNormal = ng;
-            for (const auto& texture : hit.path[i]->textures) texture->Apply(ctx, sp.surface);
-            n = ctx.normal;
         }
-        sp.point = ray.At(hit.t());
-    } else {
-        n = Normalize(worldFromPrimitive.ApplyNormal(n));
-        ng = Normalize(worldFromPrimitive.ApplyNormal(ng));
-        sp.point = ray.At(hit.t());
+        if (!texturing || hit.path[i]->textures.empty()) continue;
+        ctx.point = p;
+        ctx.normal = n;
+        ctx.geometricNormal = ng;
+        for (const auto& texture : hit.path[i]->textures) texture->Apply(ctx, sp.surface);
+        n = ctx.normal;
     }
+    sp.point = ray.At(hit.t());
 
     // Numerical guard, six finiteness tests per hit: a normal that overflowed or vanished
     // (extreme scale factors, degenerate geometry) must not carry NaN into the shading, so
