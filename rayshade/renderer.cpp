@@ -138,7 +138,7 @@ void Renderer::Supersample(int x, int y, Pixel& px) const {
     Count(kSupersampled);
 }
 
-bool Renderer::NeedsRefinement(const std::vector<Pixel>& pixels, int x, int y) const {
+bool Renderer::NeedsRefinement(const Pixel* pixels, int x, int y) const {
     const int w = window_.Width();
     const Pixel* five[5] = {&pixels[y * w + x], &pixels[y * w + x - 1], &pixels[y * w + x + 1],
                             &pixels[(y - 1) * w + x], &pixels[(y + 1) * w + x]};
@@ -179,7 +179,7 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
         state.rows = rows;
         state.pixels.assign(static_cast<size_t>(w) * rows, Pixel{});
     }
-    std::vector<Pixel>& pixels = state.pixels;
+    auto& pixels = state.pixels;
     using Phase = FrameState::Phase;
 
     const long totalWork = static_cast<long>(w) * rows * 2;
@@ -245,7 +245,8 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
     // one that the previous pass supersampled (no other test result can change). The order
     // of the lists does not matter: each pixel's samples depend on the pixel alone.
     if (state.phase == Phase::Refinement) {
-        std::vector<int> testedInPass(pixels.size(), -1), queuedInPass(pixels.size(), -1);
+        std::vector<int, LargeBufferAllocator<int>> testedInPass(pixels.size(), -1),
+            queuedInPass(pixels.size(), -1);
         auto isInterior = [&](long n) {
             long x = n % w, y = n / w;
             return x >= 1 && x <= w - 2 && y >= 1 && y <= h - 1;
@@ -264,7 +265,8 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
             auto test = [&](long c) {
                 if (testedInPass[c] == pass) return;
                 testedInPass[c] = pass;
-                if (!NeedsRefinement(pixels, static_cast<int>(c % w), static_cast<int>(c / w))) return;
+                if (!NeedsRefinement(pixels.data(), static_cast<int>(c % w), static_cast<int>(c / w)))
+                    return;
                 for (long n : {c, c - 1, c + 1, c - w, c + w}) {
                     if (pixels[n].supersampled || queuedInPass[n] == pass) continue;
                     queuedInPass[n] = pass;
