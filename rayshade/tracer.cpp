@@ -35,6 +35,19 @@ double Attenuation(double dist, double halfDist) {
     return q < -10 ? 0 : std::exp(q);
 }
 
+// x^e for the specular and translucency exponents (x in (0, 1]): binary powering when e is
+// a whole number up to 1024 (nearly every surface: specpow 20), a few multiplications
+// instead of a std::pow call, and within a few ulp of it.
+double HighlightPower(double x, double e) {
+    if (!(e >= 0 && e <= 1024 && e == std::floor(e))) return std::pow(x, e);
+    double result = 1;
+    for (unsigned n = static_cast<unsigned>(e); n != 0; n >>= 1) {
+        if (n & 1) result *= x;
+        x *= x;
+    }
+    return result;
+}
+
 // Heckbert's refraction: false on total internal reflection.
 bool Refract(const Vec3& d, Vec3 n, double mu, Vec3& out) {
     double c1 = -Dot(d, n);
@@ -200,7 +213,7 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
             c += s.diffuse * li * cosTheta;
             double cosAlpha = Dot(mirror, ls.shadeDir);
             if (s.specpow >= kEpsilon && cosAlpha > 0)
-                c += s.specular * li * std::pow(cosAlpha, s.specpow);
+                c += s.specular * li * HighlightPower(cosAlpha, s.specpow);
         } else if (s.translucency >= kEpsilon) {
             // Light from behind the surface. The original scales the whole colour
             // accumulated so far by τ (spec §3.6); we scale only this light's share, the
@@ -212,7 +225,7 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
             Color share = s.translucentColor * li * (-cosTheta);
             double cosAlpha = -Dot(mirror, ls.shadeDir);
             if (s.translucentPow >= kEpsilon && cosAlpha > 0)
-                share += s.body * li * std::pow(cosAlpha, s.translucentPow);
+                share += s.body * li * HighlightPower(cosAlpha, s.translucentPow);
             c += share * s.translucency;
         }
     }
