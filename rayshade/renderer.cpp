@@ -70,12 +70,8 @@ Renderer::Renderer(const Scene& scene, ProgressFn progress)
 
 void Renderer::ParallelFor(long count, const std::function<void(long)>& body) const {
     std::atomic<long> next{0};
-    std::atomic<long> done{0};
     auto worker = [&] {
-        for (long i; !StopRequested() && (i = next.fetch_add(1)) < count;) {
-            body(i);
-            done.fetch_add(1);
-        }
+        for (long i; !StopRequested() && (i = next.fetch_add(1)) < count;) body(i);
     };
     int n = static_cast<int>(std::min<long>(threads_, std::max<long>(count, 1)));
     std::vector<std::thread> pool;
@@ -138,7 +134,7 @@ void Renderer::Supersample(int x, int y, Pixel& px) const {
     Count(kSupersampled);
 }
 
-bool Renderer::NeedsRefinement(const std::vector<Pixel>& pixels, int x, int y) const {
+bool Renderer::NeedsRefinement(const Pixel* pixels, int x, int y) const {
     const int w = window_.Width();
     const Pixel* five[5] = {&pixels[y * w + x], &pixels[y * w + x - 1], &pixels[y * w + x + 1],
                             &pixels[(y - 1) * w + x], &pixels[(y + 1) * w + x]};
@@ -179,7 +175,7 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
         state.rows = rows;
         state.pixels.assign(static_cast<size_t>(w) * rows, Pixel{});
     }
-    std::vector<Pixel>& pixels = state.pixels;
+    auto& pixels = state.pixels;
     using Phase = FrameState::Phase;
 
     const long totalWork = static_cast<long>(w) * rows * 2;
@@ -245,7 +241,8 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
     // one that the previous pass supersampled (no other test result can change). The order
     // of the lists does not matter: each pixel's samples depend on the pixel alone.
     if (state.phase == Phase::Refinement) {
-        std::vector<int> testedInPass(pixels.size(), -1), queuedInPass(pixels.size(), -1);
+        std::vector<int, LargeBufferAllocator<int>> testedInPass(pixels.size(), -1),
+            queuedInPass(pixels.size(), -1);
         auto isInterior = [&](long n) {
             long x = n % w, y = n / w;
             return x >= 1 && x <= w - 2 && y >= 1 && y <= h - 1;
@@ -264,7 +261,8 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
             auto test = [&](long c) {
                 if (testedInPass[c] == pass) return;
                 testedInPass[c] = pass;
-                if (!NeedsRefinement(pixels, static_cast<int>(c % w), static_cast<int>(c / w))) return;
+                if (!NeedsRefinement(pixels.data(), static_cast<int>(c % w), static_cast<int>(c / w)))
+                    return;
                 for (long n : {c, c - 1, c + 1, c - w, c + w}) {
                     if (pixels[n].supersampled || queuedInPass[n] == pass) continue;
                     queuedInPass[n] = pass;
@@ -272,8 +270,23 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
                 }
             };
             if (pass == 0) {
-                for (int y = 1; y < h; ++y)
-                    for (int x = 1; x < w - 1; ++x) test(static_cast<long>(y) * w + x);
+                // Every interior pixel is tested: the tests run in parallel by rows (they
+                // only read), the queueing of the flagged neighbourhoods stays serial.
+                std::vector<uint8_t, LargeBufferAllocator<uint8_t>> excessive(pixels.size(), 0);
+                ParallelFor(h - 1, [&](long i) {
+                    const int y = static_cast<int>(i) + 1;
+                    uint8_t* row = excessive.data() + static_cast<long>(y) * w;
+                    for (int x = 1; x < w - 1; ++x) row[x] = NeedsRefinement(pixels.data(), x, y);
+                });
+                safePoint();  // a stop cuts the tests short: save the state from before them
+                for (long c = 0; c < static_cast<long>(pixels.size()); ++c) {
+                    if (!excessive[c]) continue;
+                    for (long n : {c, c - 1, c + 1, c - w, c + w}) {
+                        if (pixels[n].supersampled || queuedInPass[n] == pass) continue;
+                        queuedInPass[n] = pass;
+                        next.push_back(n);
+                    }
+                }
             } else {
                 for (long t : state.todo)
                     for (long n : {t, t - 1, t + 1, t - w, t + w})

@@ -12,6 +12,7 @@
 #include <limits>
 #include <vector>
 
+#include "libcommon/large_buffer.h"
 #include "libimage/image.h"
 #include "libshade/scene.h"
 #include "rayshade/camera.h"
@@ -69,7 +70,7 @@ struct FrameState {
     Phase phase = Phase::SingleSamples;
     int pass = 0;             // refinement passes completed
     std::vector<long> todo;   // pixels the current refinement pass supersamples
-    std::vector<PixelState> pixels;
+    std::vector<PixelState, LargeBufferAllocator<PixelState>> pixels;
 };
 
 // Called by the renderer at safe points with the current state; `final` is true when the
@@ -105,7 +106,7 @@ class Renderer {
     // Runs body(i) for i in [0, count) on the worker threads; stops handing out work when
     // a stop is requested.
     void ParallelFor(long count, const std::function<void(long)>& body) const;
-    bool NeedsRefinement(const std::vector<Pixel>& pixels, int x, int y) const;
+    bool NeedsRefinement(const Pixel* pixels, int x, int y) const;
     Image Encode(const FrameState& state, bool withAlpha) const;
     const Scene& scene_;
     const RenderOptions& options_;

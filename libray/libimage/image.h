@@ -8,13 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "libcommon/large_buffer.h"
+
 namespace rs {
 
 // 8-bit image, rows stored top row first, `channels` interleaved (1 grey, 2 grey+alpha,
 // 3 RGB, 4 RGBA).
 struct Image {
     int width = 0, height = 0, channels = 3;
-    std::vector<uint8_t> pixels;
+    std::vector<uint8_t, LargeBufferAllocator<uint8_t>> pixels;
 
     uint8_t* Row(int y) { return pixels.data() + static_cast<size_t>(y) * width * channels; }
     const uint8_t* Row(int y) const {

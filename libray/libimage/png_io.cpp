@@ -86,6 +86,11 @@ bool WritePngFrom(PngContext& context, std::FILE* file, const Image& image) {
     // zlib level 3 instead of the default 6: encoding is serial work at the end of every
     // frame, and level 3 is several times faster for files only a few percent larger.
     png_set_compression_level(context.png, 3);
+    // The "sub" filter alone instead of libpng's per-row choice among all five: trying every
+    // filter on every row doubled the encoding time of rendered 1024x1024 frames (about
+    // 0.1 s -> 0.05 s), and the files stayed within a few percent of the size (smaller for
+    // some).
+    png_set_filter(context.png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_set_IHDR(context.png, context.info, static_cast<png_uint_32>(image.width),
                  static_cast<png_uint_32>(image.height), 8, ColorType(image.channels),
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);

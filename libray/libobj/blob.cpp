@@ -85,7 +85,14 @@ bool Blob::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit
     std::sort(events, events + count, [](const Event& a, const Event& b) { return a.t < b.t; });
 
     int activeCount = 0;
-    std::vector<char> active(balls_.size(), 0);
+    char stackActive[16];
+    std::vector<char> heapActive;
+    char* active = stackActive;
+    if (balls_.size() > 16) {
+        heapActive.resize(balls_.size());
+        active = heapActive.data();
+    }
+    std::fill(active, active + balls_.size(), 0);
     for (int e = 0; e + 1 < count; ++e) {
         active[events[e].ball] = events[e].entering;
         activeCount += events[e].entering ? 1 : -1;
@@ -108,10 +115,11 @@ bool Blob::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit
             c[1] += b.strength * 2 * a1 * a0;
             c[0] += b.strength * a0 * a0;
         }
-        double roots[4];
-        int n = SolvePolynomialInInterval(c, 4, 0, tb - ta, roots);
-        for (int r = 0; r < n; ++r) {
-            double t = ta + roots[r];
+        // Roots come nearest first and only as many as needed are computed.
+        AscendingRoots roots(c, 4, 0, tb - ta);
+        double s;
+        while (roots.Next(s)) {
+            double t = ta + s;
             if (t > tMin && t < tMax) {
                 hit.t = t;
                 return true;

@@ -82,6 +82,7 @@ bool Cone::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit
         const double z = o.z + t * d.z;
         if (z >= start_ && z <= 1) {
             hit.t = t;
+            hit.part = a * t + b < 0 ? 0 : 1;  // d·∇f / 2 in canonical space
             return true;
         }
     }

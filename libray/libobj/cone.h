@@ -29,6 +29,10 @@ class Cone final : public Primitive {
     // 1 − u when q_y < 0 (u = 0 when q_z < ε). ∂P/∂u is the azimuthal tangent, ∂P/∂v the
     // generator direction from the apex.
     SurfaceUV UV(const Vec3& p, const Vec3& facingNormal, const PrimitiveHit& hit) const override;
+    // Intersect records in hit.part whether the ray enters (0) or leaves (1), from the sign
+    // of d·∇f along the ray (f = x² + y² − z² in canonical space), which is the sign of d·n
+    // the default Enters computes from the normal. Saves CSG the normal.
+    int EntersFromHit(const PrimitiveHit& hit) const override { return hit.part == 0 ? 1 : 0; }
 
   private:
     double smallRadius_, largeRadius_;

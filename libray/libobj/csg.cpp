@@ -17,19 +17,18 @@ class OperandWalk {
     // Finds the first hit beyond `from`; returns whether there is one.
     bool Advance(double from) {
         double tFar = kFar;
-        HitRecord next;
-        valid_ = operand_.Intersect(ray_, from, tFar, next);
+        valid_ = operand_.Intersect(ray_, from, tFar, hit_);
         if (!valid_) return false;
         // Classify with the ray's origin moved to the midpoint between `from` and the hit:
         // that point is strictly off the operand's surfaces with no surface of the operand
         // before the hit, so origin-based tests ("ray start outside", spheres and boxes) are
         // reliable. The origin moves along the direction, so t shifts by the same amount.
-        const double tOrigin = 0.5 * (from + next.t());
+        const double t = hit_.t();
+        const double tOrigin = 0.5 * (from + t);
         const Ray shifted{ray_.At(tOrigin), ray_.dir, ray_.time};
-        HitRecord local = next;
-        local.prim.t -= tOrigin;
-        enters_ = HitEnters(shifted, local);
-        hit_ = next;
+        hit_.prim.t = t - tOrigin;
+        enters_ = HitEnters(shifted, hit_);
+        hit_.prim.t = t;
         return true;
     }
 

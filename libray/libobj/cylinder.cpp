@@ -62,6 +62,7 @@ bool Cylinder::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit&
         const double z = o.z + t * d.z;
         if (z >= 0 && z <= 1) {
             hit.t = t;
+            hit.part = a * t + b < 0 ? 0 : 1;  // d·∇f / 2 in canonical space
             return true;
         }
     }

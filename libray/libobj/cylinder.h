@@ -29,6 +29,10 @@ class Cylinder final : public Primitive {
     // Canonical q: v = q_z, u = acos(q_x)/(2π), 1 − u when q_y < 0. ∂P/∂u is the azimuthal
     // tangent, ∂P/∂v the axis direction.
     SurfaceUV UV(const Vec3& p, const Vec3& facingNormal, const PrimitiveHit& hit) const override;
+    // Intersect records in hit.part whether the ray enters (0) or leaves (1) the wall, from
+    // the sign of the radial field's derivative along the ray, d·∇f, which is the sign of
+    // d·n the default Enters computes from the normal. Saves CSG the normal.
+    int EntersFromHit(const PrimitiveHit& hit) const override { return hit.part == 0 ? 1 : 0; }
 
   private:
     double radius_;

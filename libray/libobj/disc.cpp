@@ -35,10 +35,12 @@ const IntersectionCounters& Disc::Counters() const {
 Bounds3 Disc::Bounds() const { return CircleBounds(center_, normal_, radius_); }
 
 bool Disc::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const {
-    const double t = (offset_ - Dot(normal_, ray.origin)) / Dot(normal_, ray.dir);
+    const double along = Dot(normal_, ray.dir);
+    const double t = (offset_ - Dot(normal_, ray.origin)) / along;
     if (!(t > tMin && t < tMax)) return false;
     if (LengthSquared(ray.At(t) - center_) > radiusSquared_) return false;
     hit.t = t;
+    hit.part = along < 0 ? 0 : 1;
     return true;
 }
 

@@ -24,6 +24,9 @@ class Disc final : public Primitive {
     // object-space X_x, X_y as in the original (meaningful for discs centred at the origin
     // in the xy-plane). ∂P/∂v is the radial direction, ∂P/∂u = n̂ × radial.
     SurfaceUV UV(const Vec3& p, const Vec3& facingNormal, const PrimitiveHit& hit) const override;
+    // Intersect records in hit.part whether the ray meets the disc against its normal (0,
+    // entering) or along it (1): the default Enters test d·n < 0, without the normal call.
+    int EntersFromHit(const PrimitiveHit& hit) const override { return hit.part == 0 ? 1 : 0; }
 
   private:
     double radius_, radiusSquared_;

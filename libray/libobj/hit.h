@@ -3,6 +3,8 @@
 // for the winner only.
 #pragma once
 
+#include <algorithm>
+
 #include "libobj/primitive.h"
 
 namespace rs {
@@ -20,6 +22,19 @@ struct HitRecord {
     int pathLength = 0;
     // CSG overrides the enter/leave classification of the hit: -1 none, 0 leave, 1 enter.
     int enterOverride = -1;
+
+    HitRecord() = default;
+    // Copies only the valid part of the path: records are copied per CSG step and the
+    // full array is ten times larger than what a typical path uses.
+    HitRecord(const HitRecord& other) { *this = other; }
+    HitRecord& operator=(const HitRecord& other) {
+        prim = other.prim;
+        primitive = other.primitive;
+        pathLength = other.pathLength;
+        enterOverride = other.enterOverride;
+        std::copy(other.path, other.path + other.pathLength, path);
+        return *this;
+    }
 
     double t() const { return prim.t; }
 };

@@ -30,11 +30,12 @@ std::shared_ptr<Object> Object::MakeInstance(std::shared_ptr<Object> of) {
 }
 
 bool Object::Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const {
-    Ray ray = rayParent;
+    Ray rayObject;
     if (!parentFromObject.IsIdentity())
-        ray = parentFromObject.IsAnimated()
-                  ? parentFromObject.At(rayParent.time).InverseRay(rayParent)
-                  : parentFromObject.Static().InverseRay(rayParent);
+        rayObject = parentFromObject.IsAnimated()
+                        ? parentFromObject.At(rayParent.time).InverseRay(rayParent)
+                        : parentFromObject.Static().InverseRay(rayParent);
+    const Ray& ray = parentFromObject.IsIdentity() ? rayParent : rayObject;
     bool found = false;
     switch (kind_) {
         case Kind::Primitive: {

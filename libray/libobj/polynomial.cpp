@@ -108,7 +108,52 @@ AscendingRoots::AscendingRoots(const double* coeffs, int degree, double lo, doub
         child.degree = parent.degree - 1;
         for (int i = 0; i <= child.degree; ++i) child.c[i] = (i + 1) * parent.c[i + 1];
     }
+    if (top.degree >= 3 && lo <= hi && !MayHaveRoot(top.c, top.degree, lo, hi)) {
+        top.done = true;
+        top.pendingZero = false;
+        nLevels_ = 1;
+        return;
+    }
     for (int k = 0; k < nLevels_; ++k) Start(levels_[k], lo, hi);
+}
+
+bool MayHaveRoot(const double* c, int degree, double lo, double hi) {
+    // Taylor-shift to s = x − lo and scale to u = s / (hi − lo) ∈ [0, 1]: a_i = c⁽ⁱ⁾(lo)/i!·wⁱ.
+    // Then b_k = Σ_{i≤k} C(k,i)/C(n,i)·a_i are the Bernstein coefficients, and p lies in
+    // their convex hull on [lo, hi]. The margin is 10⁻⁹ of S = Σ|c_i|·max(|lo|,|hi|)ⁱ, which
+    // bounds |p| term by term over the interval: far above the rounding error of the few
+    // operations here (a small multiple of u·S), and far above the solver's own tolerance
+    // kZeroTolerance·S for "p(x) is zero", so the answer "no root" never hides a root (or a
+    // tangency within rounding error) that the solver would report.
+    if (degree < 1 || degree > 4) return true;
+    const double w = hi - lo;
+    double a[5];
+    for (int i = 0; i <= degree; ++i) a[i] = c[i];
+    // Repeated synthetic division by (x − lo) gives the coefficients of p(lo + s).
+    for (int i = 0; i < degree; ++i)
+        for (int j = degree - 1; j >= i; --j) a[j] += lo * a[j + 1];
+    double scale = 1;
+    for (int i = 1; i <= degree; ++i) {
+        scale *= w;
+        a[i] *= scale;
+    }
+    // C(k,i)/C(n,i) for n = degree, rows k = 0…n.
+    static constexpr double kRatio[5][5][5] = {
+        {},
+        {{1}, {1, 1}},
+        {{1}, {1, 0.5}, {1, 1, 1}},
+        {{1}, {1, 1.0 / 3}, {1, 2.0 / 3, 1.0 / 3}, {1, 1, 1, 1}},
+        {{1}, {1, 0.25}, {1, 0.5, 1.0 / 6}, {1, 0.75, 0.5, 0.25}, {1, 1, 1, 1, 1}},
+    };
+    const double margin = 1e-9 * EvaluationScale(c, degree, std::max(std::fabs(lo), std::fabs(hi)));
+    bool allAbove = true, allBelow = true;
+    for (int k = 0; k <= degree; ++k) {
+        double b = 0;
+        for (int i = 0; i <= k; ++i) b += kRatio[degree][k][i] * a[i];
+        allAbove = allAbove && b > margin;
+        allBelow = allBelow && b < -margin;
+    }
+    return !(allAbove || allBelow) || !std::isfinite(margin);
 }
 
 void AscendingRoots::Start(Level& level, double lo, double hi) {

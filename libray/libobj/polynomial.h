@@ -74,6 +74,12 @@ class AscendingRoots {
     int nLevels_ = 0;
 };
 
+// False when Σ coeffs[i]·x^i (ascending powers, degree ≤ 4) provably keeps one strict sign on
+// [lo, hi] by a margin far above rounding error (its Bernstein coefficients there all share
+// that sign), so none of the solvers above would report a root there; true otherwise. A
+// cheap rejection test: rays that miss a quartic surface mostly end here.
+bool MayHaveRoot(const double* coeffs, int degree, double lo, double hi);
+
 // Σ coeffs[i]·x^i by Horner's rule.
 double EvaluatePolynomial(const double* coeffs, int degree, double x);
 

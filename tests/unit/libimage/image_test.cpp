@@ -179,7 +179,7 @@ TEST_F(ImageFiles, MtvHeaderMayUseTabsAndExtraBlanksButPixelsStartAfterOneNewlin
     ASSERT_TRUE(image) << error;
     EXPECT_EQ(image->width, 1);
     EXPECT_EQ(image->height, 1);
-    EXPECT_TRUE(image->pixels == (std::vector<uint8_t>{'\n', 'A', 'B'}));
+    EXPECT_TRUE(image->pixels == (decltype(image->pixels){'\n', 'A', 'B'}));
 }
 
 TEST_F(ImageFiles, ReadsPalettePngAsRgbAndPaletteWithTransparencyAsRgba) {
@@ -195,7 +195,7 @@ TEST_F(ImageFiles, ReadsPalettePngAsRgbAndPaletteWithTransparencyAsRgba) {
     auto image = ReadImage(PathOf("pal.png"), error);
     ASSERT_TRUE(image) << error;
     EXPECT_EQ(image->channels, 3);
-    EXPECT_TRUE(image->pixels == (std::vector<uint8_t>{1, 2, 3, 255, 0, 0, 0, 128, 0}));
+    EXPECT_TRUE(image->pixels == (decltype(image->pixels){1, 2, 3, 255, 0, 0, 0, 128, 0}));
 
     spec.paletteAlpha = {0, 100};  // entry 2 has no tRNS entry: opaque
     WriteRawPng(PathOf("palt.png"), spec);
@@ -203,7 +203,7 @@ TEST_F(ImageFiles, ReadsPalettePngAsRgbAndPaletteWithTransparencyAsRgba) {
     ASSERT_TRUE(image) << error;
     EXPECT_EQ(image->channels, 4);
     EXPECT_TRUE(image->pixels ==
-                (std::vector<uint8_t>{1, 2, 3, 255, 255, 0, 0, 0, 0, 128, 0, 100}));
+                (decltype(image->pixels){1, 2, 3, 255, 255, 0, 0, 0, 0, 128, 0, 100}));
 }
 
 TEST_F(ImageFiles, ReadsLowBitDepthGreyScaledToEightBits) {
@@ -219,7 +219,7 @@ TEST_F(ImageFiles, ReadsLowBitDepthGreyScaledToEightBits) {
     auto image = ReadImage(PathOf("grey2.png"), error);
     ASSERT_TRUE(image) << error;
     EXPECT_EQ(image->channels, 1);
-    EXPECT_TRUE(image->pixels == (std::vector<uint8_t>{0, 85, 170, 255}));
+    EXPECT_TRUE(image->pixels == (decltype(image->pixels){0, 85, 170, 255}));
 }
 
 TEST_F(ImageFiles, ReadsGreyWithTransparentValueAsGreyAlpha) {
@@ -234,7 +234,7 @@ TEST_F(ImageFiles, ReadsGreyWithTransparentValueAsGreyAlpha) {
     auto image = ReadImage(PathOf("greyt.png"), error);
     ASSERT_TRUE(image) << error;
     EXPECT_EQ(image->channels, 2);
-    EXPECT_TRUE(image->pixels == (std::vector<uint8_t>{5, 0, 9, 255}));
+    EXPECT_TRUE(image->pixels == (decltype(image->pixels){5, 0, 9, 255}));
 }
 
 TEST_F(ImageFiles, ReadsSixteenBitSamplesScaledWithRounding) {
@@ -251,7 +251,7 @@ TEST_F(ImageFiles, ReadsSixteenBitSamplesScaledWithRounding) {
     auto image = ReadImage(PathOf("rgb16.png"), error);
     ASSERT_TRUE(image) << error;
     EXPECT_EQ(image->channels, 3);
-    EXPECT_TRUE(image->pixels == (std::vector<uint8_t>{12, 255, 0, 128, 0, 1}));
+    EXPECT_TRUE(image->pixels == (decltype(image->pixels){12, 255, 0, 128, 0, 1}));
 }
 
 TEST_F(ImageFiles, ReadsInterlacedPng) {

@@ -22,7 +22,7 @@ std::shared_ptr<const Image> Grey(int channels, std::vector<uint8_t> pixels) {
     image->width = 2;
     image->height = 2;
     image->channels = channels;
-    image->pixels = std::move(pixels);
+    image->pixels.assign(pixels.begin(), pixels.end());
     return image;
 }
 
