@@ -737,7 +737,8 @@ TEST(RayQuery, OctreeOverridesKeepTheAnswers) {
 
 // -f gives every query ray a footprint: `tolerance auto` (the default) then keeps each root
 // within an eighth of the footprint at the hit (capped at 1e-6 in units of t, never finer
-// than 1e-7 in distance), and a fixed `-e` ignores it. A sphere of radius e = 0.8 seen from distance 6 along unit directions.
+// than 1e-7 in distance), and a fixed `-e` ignores it. A sphere of radius e = 0.8 seen
+// from distance 6.
 TEST(RayQuery, FootprintSetsTheAutomaticTolerance) {
     std::mt19937_64 rng(7);
     std::vector<QueryRay> rays;

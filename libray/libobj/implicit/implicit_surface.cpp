@@ -692,10 +692,12 @@ bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
     Count(counters_.tests);
     if (found) Count(counters_.hits);
     // Less whatever lazy tree builds (BuildTree) counted during this call.
-    Count(counters_.values, ThreadCount(field.values) - values - (buildTally.values - built.values));
-    Count(counters_.gradients, ThreadCount(field.gradients) - gradients -
-                                   (buildTally.gradients - built.gradients));
-    Count(counters_.bounds, ThreadCount(field.bounds) - bounds - (buildTally.bounds - built.bounds));
+    Count(counters_.values,
+          ThreadCount(field.values) - values - (buildTally.values - built.values));
+    Count(counters_.gradients,
+          ThreadCount(field.gradients) - gradients - (buildTally.gradients - built.gradients));
+    Count(counters_.bounds,
+          ThreadCount(field.bounds) - bounds - (buildTally.bounds - built.bounds));
     Count(counters_.riddersIterations,
           ThreadCount(ridders) - iterations -
               (buildTally.riddersIterations - built.riddersIterations));

@@ -348,7 +348,8 @@ std::vector<std::pair<Ray, double>> SphereRays(int count, double radius) {
     while (static_cast<int>(rays.size()) < count) {
         double x = u(rng), y = u(rng);
         if (x * x + y * y > 0.81 * radius * radius) continue;
-        rays.push_back({Ray{{x, y, -5}, {0, 0, 1}}, 5 - std::sqrt(radius * radius - x * x - y * y)});
+        const double depth = std::sqrt(radius * radius - x * x - y * y);
+        rays.push_back({Ray{{x, y, -5}, {0, 0, 1}}, 5 - depth});
     }
     return rays;
 }
