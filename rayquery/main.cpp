@@ -1,6 +1,9 @@
 // rayquery: first hits of world-space rays against a scene (see README.md in this folder).
-//   rayquery [-m METHOD] [-v] SCENE.ray < rays.txt
+//   rayquery [-m METHOD] [-e EPS] [-d DEPTH] [-r DRATIO] [-k STEP] [-H NAME=on|off] [-v]
+//            SCENE.ray < rays.txt
 #include <atomic>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -14,29 +17,103 @@
 
 namespace {
 
-
 constexpr const char* kUsage =
-    "usage: rayquery [-m patches|kb89] [-v] SCENE.ray < rays.txt\n"
+    "usage: rayquery [-m METHOD] [-e EPS] [-d DEPTH] [-r DRATIO] [-k STEP] [-H NAME=on|off]...\n"
+    "                [-v] SCENE.ray < rays.txt\n"
     "  each input line: ox oy oz dx dy dz [tmin [tmax]]   (world space; default tmin 0,\n"
     "                   tmax 1e14; t in units of the given direction; '#' lines skipped)\n"
     "  each output line: hit T PX PY PZ NX NY NZ OBJECT PATCH EVALS  |  miss EVALS\n"
-    "  -m METHOD  intersection method of every implicit object\n"
+    "  -m METHOD  intersection method of every implicit object: patches, kb89, march,\n"
+    "             sphere, segment, polynomial (blob kernel only) or exact (ground truth)\n"
+    "  -e EPS     root tolerance of every implicit object (object-space distance, > 0)\n"
+    "  -d DEPTH   octree maximum depth, 0 to 16 (patches, kb89)\n"
+    "  -r DRATIO  Gascuel's Dratio (patches; -1 disables heuristic 3bis)\n"
+    "  -k STEP    march step (object-space distance, > 0)\n"
+    "  -H NAME=on|off  switch an octree heuristic or search test: range, patch, 1, 1bis, 3,\n"
+    "             3bis, 4, 5, 0bis, t1, 2bis, t3 (repeatable, applied in order)\n"
     "  -v         print the statistics counters to standard error at the end\n";
 
+// The value of option argv[i] as a finite number; false with a message otherwise.
+bool ReadNumber(int argc, char** argv, int i, double& value, std::string& error) {
+    if (i + 1 >= argc) {
+        error = std::string(argv[i]) + " needs a value";
+        return false;
+    }
+    char* end = nullptr;
+    value = std::strtod(argv[i + 1], &end);
+    if (end == argv[i + 1] || *end != '\0' || !std::isfinite(value)) {
+        error = std::string(argv[i]) + ": '" + argv[i + 1] + "' is not a finite number";
+        return false;
+    }
+    return true;
+}
+
+// Reads the option at argv[i] (and its value) into `overrides`; `i` moves past the value.
+// Returns false with a message on a malformed value; `known` tells whether it was ours.
+bool ReadOverride(int argc, char** argv, int& i, rs::ImplicitOverrides& overrides, bool& known,
+                  std::string& error) {
+    const std::string arg = argv[i];
+    known = true;
+    double v = 0;
+    if (arg == "-m") {
+        rs::ImplicitMethod method;
+        if (i + 1 >= argc || !rs::ParseImplicitMethod(argv[i + 1], method)) {
+            error = "-m needs a method: " + rs::ImplicitMethodNames();
+            return false;
+        }
+        overrides.method = method;
+    } else if (arg == "-e") {
+        if (!ReadNumber(argc, argv, i, v, error)) return false;
+        if (!(v > 0)) {
+            error = "-e: the tolerance must be > 0";
+            return false;
+        }
+        overrides.tolerance = v;
+    } else if (arg == "-d") {
+        if (!ReadNumber(argc, argv, i, v, error)) return false;
+        if (v != std::floor(v) || v < 0 || v > 16) {
+            error = "-d: the octree depth must be an integer in [0, 16]";
+            return false;
+        }
+        overrides.maxDepth = static_cast<int>(v);
+    } else if (arg == "-r") {
+        if (!ReadNumber(argc, argv, i, v, error)) return false;
+        overrides.dRatio = v;
+    } else if (arg == "-k") {
+        if (!ReadNumber(argc, argv, i, v, error)) return false;
+        if (!(v > 0)) {
+            error = "-k: the march step must be > 0";
+            return false;
+        }
+        overrides.step = v;
+    } else if (arg == "-H") {
+        if (i + 1 >= argc) {
+            error = "-H needs NAME=on|off";
+            return false;
+        }
+        if (!rs::ParseOctreeSwitch(argv[i + 1], overrides, error)) return false;
+    } else {
+        known = false;
+        return true;
+    }
+    ++i;
+    return true;
+}
+
 int Run(int argc, char** argv) {
-    bool verbose = false, overrideMethod = false;
-    rs::ImplicitMethod method = rs::ImplicitMethod::Patches;
+    bool verbose = false;
+    rs::ImplicitOverrides overrides;
     std::string sceneFile;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];
-        if (arg == "-m") {
-            if (i + 1 >= argc || !rs::ParseImplicitMethod(argv[i + 1], method)) {
-                std::fprintf(stderr, "rayquery: -m needs a method: patches or kb89\n%s", kUsage);
-                return 1;
-            }
-            overrideMethod = true;
-            ++i;
-        } else if (arg == "-v") {
+        bool known = false;
+        std::string error;
+        if (!ReadOverride(argc, argv, i, overrides, known, error)) {
+            std::fprintf(stderr, "rayquery: %s\n%s", error.c_str(), kUsage);
+            return 1;
+        }
+        if (known) continue;
+        if (arg == "-v") {
             verbose = true;
         } else if (arg == "-h" || arg == "--help") {
             std::fputs(kUsage, stdout);
@@ -60,7 +137,13 @@ int Run(int argc, char** argv) {
     rs::ParseInput input;
     input.path = sceneFile;
     rs::Scene scene = rs::ParseScene(input, rs::RenderOptions{});
-    if (overrideMethod) rs::OverrideImplicitMethod(*scene.world, method);
+    if (!overrides.Empty()) {
+        std::string error;
+        if (rs::ApplyImplicitOverrides(*scene.world, overrides, error) < 0) {
+            std::fprintf(stderr, "rayquery: %s\n", error.c_str());
+            return 1;
+        }
+    }
     const double time = scene.options.startTime;
     scene.world->PrepareFrame(time, scene.options.shutter);
 

@@ -3,7 +3,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <set>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -104,37 +103,6 @@ std::string FormatQueryResult(const QueryResult& r) {
                         r.point.x, r.point.y, r.point.z, r.normal.x, r.normal.y, r.normal.z,
                         r.object.c_str(), r.patch.c_str(),
                         static_cast<unsigned long long>(r.evals));
-}
-
-namespace {
-
-void Override(Object& node, ImplicitMethod method, std::set<const Object*>& seen, int& count) {
-    if (!seen.insert(&node).second) return;
-    switch (node.kind()) {
-        case Object::Kind::Primitive:
-            if (auto* implicit = dynamic_cast<ImplicitSurface*>(node.primitive())) {
-                implicit->SetMethod(method);
-                ++count;
-            }
-            break;
-        case Object::Kind::Aggregate:
-            for (const std::shared_ptr<Object>& child : node.aggregate()->Children()) {
-                Override(*child, method, seen, count);
-            }
-            break;
-        case Object::Kind::Instance:
-            Override(*node.instanceOf(), method, seen, count);
-            break;
-    }
-}
-
-}  // namespace
-
-int OverrideImplicitMethod(Object& root, ImplicitMethod method) {
-    std::set<const Object*> seen;
-    int count = 0;
-    Override(root, method, seen, count);
-    return count;
 }
 
 }  // namespace rs

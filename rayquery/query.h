@@ -47,8 +47,4 @@ QueryResult RunQuery(const Object& world, const QueryRay& query);
 // significant digits, no trailing newline.
 std::string FormatQueryResult(const QueryResult& result);
 
-// Sets the method of every implicit object below `root` (each shared node once); returns
-// how many were changed.
-int OverrideImplicitMethod(Object& root, ImplicitMethod method);
-
 }  // namespace rs

@@ -75,7 +75,13 @@ const char* UsageText() {
            "  -X l r b t    crop window (fractions)\n"
            "  -L name=value raise a resource limit (docs/robustness.md): resolutionSide,\n"
            "                resolutionPixels, samplesPerSide, rayDepth, sceneBytes, gridVoxels,\n"
-           "                gridEntries, polylinePoints, octreeBytes\n";
+           "                gridEntries, polylinePoints, octreeBytes\n"
+           "  Implicit objects (every one, whatever its scene says):\n"
+           "  -M method     patches, kb89, march, sphere, segment, polynomial, exact\n"
+           "  -I eps        root tolerance               -K depth     octree maximum depth\n"
+           "  -J dratio     Dratio (patches)             -B step      march step\n"
+           "  -H name=on|off  octree heuristic or search test: range, patch, 1, 1bis, 3, 3bis,\n"
+           "                4, 5, 0bis, t1, 2bis, t3\n";
 }
 
 bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std::string& error) {
@@ -92,6 +98,13 @@ bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std
         const char* flag = arg.c_str();
         switch (arg[1]) {
             case 'A': if (!in.Int(flag, o.startFrame)) return false; break;
+            case 'B': {
+                double step = 0;
+                if (!in.Real(flag, step)) return false;
+                if (!(step > 0)) return in.Fail("-B: the march step must be > 0");
+                cl.implicit.step = step;
+                break;
+            }
             case 'a': cl.alpha = !cl.alpha; break;
             case 'C':
                 if (!in.Real(flag, o.cutoff.r) || !in.Real(flag, o.cutoff.g) || !in.Real(flag, o.cutoff.b))
@@ -116,7 +129,34 @@ bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std
             case 'f': o.flipNormals = !o.flipNormals; break;
             case 'G': if (!in.Real(flag, o.gamma)) return false; break;
             case 'g': o.filter = o.filter == FilterKind::Box ? FilterKind::Gauss : FilterKind::Box; break;
+            case 'H': {
+                std::string assignment, switchError;
+                if (!in.Word(flag, assignment)) return false;
+                if (!ParseOctreeSwitch(assignment, cl.implicit, switchError))
+                    return in.Fail("-H: " + switchError);
+                break;
+            }
             case 'h': cl.help = true; break;
+            case 'I': {
+                double tolerance = 0;
+                if (!in.Real(flag, tolerance)) return false;
+                if (!(tolerance > 0)) return in.Fail("-I: the implicit tolerance must be > 0");
+                cl.implicit.tolerance = tolerance;
+                break;
+            }
+            case 'J': {
+                double dRatio = 0;
+                if (!in.Real(flag, dRatio)) return false;
+                cl.implicit.dRatio = dRatio;
+                break;
+            }
+            case 'K': {
+                int depth = 0;
+                if (!in.Int(flag, depth)) return false;
+                if (depth < 0 || depth > 16) return in.Fail("-K: the octree depth must be in [0, 16]");
+                cl.implicit.maxDepth = depth;
+                break;
+            }
             case 'j':
                 o.jitter = !o.jitter;
                 o.jitterSet = true;
@@ -130,6 +170,16 @@ bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std
                 break;
             }
             case 'r': o.eyeSepSide = 1; break;
+            case 'M': {
+                std::string name;
+                ImplicitMethod method;
+                if (!in.Word(flag, name)) return false;
+                if (!ParseImplicitMethod(name, method))
+                    return in.Fail("-M: unknown method '" + name + "' (expected " +
+                                   ImplicitMethodNames() + ")");
+                cl.implicit.method = method;
+                break;
+            }
             case 'm': break;  // sample map in the RLE alpha channel: no RLE writer
             case 'N':
                 if (!in.Int(flag, o.frames)) return false;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "libobj/implicit/implicit_overrides.h"
 #include "libshade/scene.h"
 
 namespace rs {
@@ -18,6 +19,9 @@ struct CommandLine {
     double eyeSep = -1;     // -E (applies when options.eyeSepSet)
     bool help = false;      // -h
     bool resume = false;    // -c
+    // -M method, -I tolerance, -K octree depth, -J Dratio, -B march step, -H NAME=on|off:
+    // applied to every implicit object after parsing (docs/options.md).
+    ImplicitOverrides implicit;
 };
 
 // Parses argv. Returns false with `error` set on a usage error (unknown option, missing

@@ -154,6 +154,9 @@ int Run(int argc, char** argv) {
     input.useCpp = cl.useCpp;
     input.cppArgs = cl.cppArgs;
     rs::Scene scene = rs::ParseScene(input, cl.options);
+    if (!cl.implicit.Empty() &&
+        rs::ApplyImplicitOverrides(*scene.world, cl.implicit, error) < 0)
+        rs::Report(Severity::Abort, {}, "%s", error.c_str());
     rs::RenderOptions& o = scene.options;
     gQuiet = o.quiet;
     if (o.eyeSepSet) scene.camera.eyeSep = cl.eyeSep;

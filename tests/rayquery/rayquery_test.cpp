@@ -523,5 +523,201 @@ TEST(RayQuery, BadInputIsReportedWithLineNumbers) {
     EXPECT_NE(badScene.stdErr.find(".ray:1:"), std::string::npos) << badScene.stdErr;
 }
 
+// -m with every method: non-grazing rays (impact parameter <= 0.95e, directions of random
+// length) find the sphere of radius e within the tolerance (-e 1e-9, checked to 1e-7 as
+// above), and misses passing outside by 0.1 % or more are misses. Only patches names a patch.
+TEST(RayQuery, EveryMethodFindsTheSphere) {
+    const uint64_t seed = 606;
+    const Vec3 c{0.3, -0.2, 0.1};
+    const double e = 0.8;
+    for (const char* method : {"patches", "kb89", "march", "sphere", "segment", "exact"}) {
+        std::mt19937_64 rng(seed);
+        std::vector<QueryRay> rays;
+        std::vector<double> expected;
+        for (int i = 0; i < 60; ++i) {
+            double L = std::uniform_real_distribution<double>(2, 30)(rng);
+            bool hit = i % 3 != 0;
+            double b = hit ? std::uniform_real_distribution<double>(0, 0.95)(rng) * e
+                           : std::uniform_real_distribution<double>(1.001, 1.9)(rng) * e;
+            double scale;
+            rays.push_back(RayPassing(c, b, L, rng, scale));
+            expected.push_back(hit ? (L - std::sqrt(e * e - b * b)) / scale : -1);
+        }
+        std::vector<QueryLine> out =
+            RunQueries(SphereScene(c, "field quadratic 0.8 1 2"), rays,
+                       std::string("-e 1e-9 -m ") + method);
+        for (size_t i = 0; i < rays.size(); ++i) {
+            std::string what = std::string(method) + ": " + Describe(seed, i, rays[i]);
+            if (expected[i] < 0) {
+                EXPECT_FALSE(out[i].hit) << what;
+                continue;
+            }
+            ExpectOnSphere(out[i], rays[i], c, e, expected[i], what);
+            EXPECT_EQ(out[i].patch, std::string(method) == "patches" ? "c" : "-") << what;
+            EXPECT_GT(out[i].evals, 0) << what;
+        }
+    }
+}
+
+// -e is each method's final accuracy: the depth error stays within it, coarse and fine.
+TEST(RayQuery, ToleranceOverrideBoundsTheError) {
+    const uint64_t seed = 77;
+    const double e = 0.8;
+    for (const char* method : {"patches", "kb89", "march", "sphere", "segment"}) {
+        for (double eps : {1e-2, 1e-5}) {
+            std::mt19937_64 rng(seed);
+            std::vector<QueryRay> rays;
+            std::vector<double> expected;
+            for (int i = 0; i < 40; ++i) {
+                double b = std::uniform_real_distribution<double>(0, 0.9)(rng) * e;
+                double scale;
+                rays.push_back(RayPassing({0, 0, 0}, b, 5, rng, scale));
+                expected.push_back((5 - std::sqrt(e * e - b * b)) / scale);
+            }
+            char args[64];
+            std::snprintf(args, sizeof args, "-m %s -e %g", method, eps);
+            std::vector<QueryLine> out =
+                RunQueries(SphereScene({0, 0, 0}, "field quadratic 0.8 1 2"), rays, args);
+            for (size_t i = 0; i < rays.size(); ++i) {
+                std::string what = std::string(args) + ": " + Describe(seed, i, rays[i]);
+                ASSERT_TRUE(out[i].hit) << what;
+                EXPECT_LE(std::abs(out[i].t - expected[i]) * Length(rays[i].d), eps * (1 + 1e-9))
+                    << what;
+            }
+        }
+    }
+}
+
+// -k sets the march step; a `method march Step` statement is overridden by it. A sphere of
+// diameter 0.1 lies between two samples 0.5 apart (missed) and is found with steps of 0.01.
+TEST(RayQuery, MarchStepOverride) {
+    const std::string tiny = std::string(kSurface) +
+                             "name dot implicit s\n method march 0.5\n tolerance 1e-10\n"
+                             " field quadratic 0.05 1 0.1\n point c 0 0 0\nend\nobject dot\n";
+    const std::vector<QueryRay> rays = {{{-3, 0, 0}, {1, 0, 0}}};
+    EXPECT_FALSE(RunQueries(tiny, rays)[0].hit);
+    std::vector<QueryLine> fine = RunQueries(tiny, rays, "-k 0.01");
+    ASSERT_TRUE(fine[0].hit);
+    EXPECT_NEAR(fine[0].t, 2.95, 1e-9);
+    EXPECT_FALSE(RunQueries(tiny, rays, "-m march -k 0.5")[0].hit);
+    // The bound-based methods do not depend on a step.
+    for (const char* method : {"sphere", "segment", "exact", "patches"}) {
+        std::vector<QueryLine> out = RunQueries(tiny, rays, std::string("-m ") + method);
+        ASSERT_TRUE(out[0].hit) << method;
+        EXPECT_NEAR(out[0].t, 2.95, 1e-9) << method;
+    }
+}
+
+// polynomial: blob-kernel points only; exact for a blob ball of radius R·sqrt(1 − sqrt(T/s)).
+TEST(RayQuery, PolynomialMethodOnBlobsOnly) {
+    const double s = 2, radius = 1.5;
+    const double r = radius * std::sqrt(1 - std::sqrt(1 / s));
+    const uint64_t seed = 31;
+    std::mt19937_64 rng(seed);
+    std::vector<QueryRay> rays;
+    std::vector<double> expected;
+    for (int i = 0; i < 50; ++i) {
+        double b = std::uniform_real_distribution<double>(0, 0.95)(rng) * r;
+        double L = std::uniform_real_distribution<double>(2, 1000)(rng);
+        double scale;
+        rays.push_back(RayPassing({1, 2, 3}, b, L, rng, scale));
+        expected.push_back((L - std::sqrt(r * r - b * b)) / scale);
+    }
+    std::vector<QueryLine> out =
+        RunQueries(SphereScene({1, 2, 3}, "field blob 2 1.5", "method polynomial"), rays);
+    for (size_t i = 0; i < rays.size(); ++i) {
+        ExpectOnSphere(out[i], rays[i], {1, 2, 3}, r, expected[i], Describe(seed, i, rays[i]));
+        EXPECT_EQ(out[i].patch, "-");
+    }
+    RunResult wrong =
+        RunText(SphereScene({0, 0, 0}, "field quadratic 0.8 1 2"), "", "-m polynomial");
+    EXPECT_EQ(wrong.status, 1);
+    EXPECT_NE(wrong.stdErr.find("method polynomial needs point skeletons with the blob kernel"),
+              std::string::npos)
+        << wrong.stdErr;
+    RunResult inScene =
+        RunText(SphereScene({0, 0, 0}, "field quadratic 0.8 1 2", "method polynomial"), "", "");
+    EXPECT_EQ(inScene.status, 1);
+    EXPECT_NE(inScene.stdErr.find(".ray:"), std::string::npos) << inScene.stdErr;
+}
+
+// The octree overrides (-d, -r, -H) change the work, not the answers.
+TEST(RayQuery, OctreeOverridesKeepTheAnswers) {
+    const uint64_t seed = 99;
+    const double e = 0.8;
+    std::mt19937_64 rng(seed);
+    std::vector<QueryRay> rays;
+    std::vector<double> expected;
+    for (int i = 0; i < 40; ++i) {
+        double b = std::uniform_real_distribution<double>(0, 0.95)(rng) * e;
+        double scale;
+        rays.push_back(RayPassing({0, 0, 0}, b, 6, rng, scale));
+        expected.push_back((6 - std::sqrt(e * e - b * b)) / scale);
+    }
+    const std::string scene = SphereScene({0, 0, 0}, "field quadratic 0.8 1 2");
+    for (const char* args :
+         {"-d 0", "-d 9 -r -1", "-m kb89 -d 3", "-H 1bis=off -H 2bis=off -H 3bis=off",
+          "-H t3=off -H t1=off -H 0bis=off", "-H range=off -H patch=off -H 1=off -H 4=off -H 5=off",
+          "-H 3=off -d 4", "-m kb89 -H 1bis=on -H 2bis=on"}) {
+        std::vector<QueryLine> out = RunQueries(scene, rays, args);
+        for (size_t i = 0; i < rays.size(); ++i) {
+            ExpectOnSphere(out[i], rays[i], {0, 0, 0}, e, expected[i],
+                           std::string(args) + ": " + Describe(seed, i, rays[i]));
+        }
+    }
+    // Depth changes the octree: -v reports fewer cells at depth 1 than at depth 6.
+    RunResult shallow = RunText(scene, "", "-v -d 1"), deep = RunText(scene, "", "-v -d 6");
+    auto cells = [](const std::string& text) {
+        size_t at = text.find("Implicit object 1: octree cells:");
+        return at == std::string::npos ? -1L
+                                       : std::atol(text.c_str() + text.find(':', at + 18) + 1);
+    };
+    EXPECT_GT(cells(deep.stdErr), cells(shallow.stdErr)) << shallow.stdErr << deep.stdErr;
+}
+
+// `method NAME` in a scene file, through the real parser (several method names, such as
+// sphere and segment, are keywords of the language).
+TEST(RayQuery, SceneMethodStatements) {
+    const std::vector<QueryRay> rays = {{{0, -5, 0}, {0, 1, 0}}};
+    for (const char* method :
+         {"patches", "kb89", "march", "march 0.1", "sphere", "segment", "exact"}) {
+        std::vector<QueryLine> out = RunQueries(
+            SphereScene({0, 0, 0}, "field quadratic 0.8 1 2", std::string("method ") + method),
+            rays);
+        ASSERT_TRUE(out[0].hit) << method;
+        EXPECT_NEAR(out[0].t, 4.2, 1e-8) << method;
+    }
+    RunResult bad =
+        RunText(SphereScene({0, 0, 0}, "field quadratic 0.8 1 2", "method cone"), "", "");
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.stdErr.find("expected a method after 'method': patches, kb89"),
+              std::string::npos)
+        << bad.stdErr;
+}
+
+TEST(RayQuery, BadOverridesAreRejected) {
+    const std::string scene = SphereScene({0, 0, 0}, "field quadratic 0.8 1 2");
+    struct Case {
+        const char *args, *message;
+    };
+    const Case cases[] = {
+        {"-m bisection", "-m needs a method: patches, kb89, march, sphere, segment"},
+        {"-e 0", "-e: the tolerance must be > 0"},
+        {"-e x", "-e: 'x' is not a finite number"},
+        {"-d 17", "-d: the octree depth"},
+        {"-d 2.5", "-d: the octree depth"},
+        {"-k -1", "-k: the march step must be > 0"},
+        {"-r", "-r: '"},  // the scene path after it is not a number
+        {"-H 1bis", "octree switch '1bis' needs =on or =off"},
+        {"-H zz=on", "unknown octree switch 'zz'"},
+    };
+    for (const Case& c : cases) {
+        RunResult r = RunText(scene, "", c.args);
+        EXPECT_EQ(r.status, 1) << c.args;
+        EXPECT_NE(r.stdErr.find(c.message), std::string::npos) << c.args << " -> " << r.stdErr;
+        EXPECT_NE(r.stdErr.find("usage: rayquery"), std::string::npos) << c.args;
+    }
+}
+
 }  // namespace
 }  // namespace rs

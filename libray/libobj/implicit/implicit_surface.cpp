@@ -155,12 +155,14 @@ bool PeekStatement(ArgReader& args) {
     return args.PeekNumber();
 }
 
-// Settings of a method, keeping the declared depth, Dratio and tolerance of `declared`.
-OctreeSettings MethodSettings(bool singleOctree, const OctreeSettings& declared,
+// Settings of a method, keeping the declared depth, Dratio and tolerance of `declared`
+// (kb89's heuristics for kb89; the patches defaults otherwise, unused by the baselines).
+OctreeSettings MethodSettings(ImplicitMethod method, const OctreeSettings& declared,
                               double patchesDRatio) {
-    OctreeSettings s = singleOctree ? OctreeSettings::Kb89() : OctreeSettings{};
+    const bool kb89 = method == ImplicitMethod::Kb89;
+    OctreeSettings s = kb89 ? OctreeSettings::Kb89() : OctreeSettings{};
     s.maxDepth = declared.maxDepth;
-    if (!singleOctree) s.dRatio = patchesDRatio;
+    if (!kb89) s.dRatio = patchesDRatio;
     s.tolerance = declared.tolerance;
     s.minWidth = declared.minWidth;
     return s;
@@ -174,21 +176,6 @@ bool StartsWith(const std::string& s, const char* prefix) {
 }
 
 }  // namespace
-
-bool ParseImplicitMethod(const std::string& word, ImplicitMethod& method) {
-    if (word == "patches") {
-        method = ImplicitMethod::Patches;
-    } else if (word == "kb89") {
-        method = ImplicitMethod::Kb89;
-    } else {
-        return false;
-    }
-    return true;
-}
-
-const char* ImplicitMethodName(ImplicitMethod method) {
-    return method == ImplicitMethod::Kb89 ? "kb89" : "patches";
-}
 
 ImplicitSurface::ImplicitSurface(std::vector<FieldTerm> terms, ImplicitOptions options)
     : terms_(std::move(terms)), options_(std::move(options)) {
@@ -207,15 +194,35 @@ ImplicitSurface::ImplicitSurface(std::vector<FieldTerm> terms, ImplicitOptions o
     Build();
 }
 
-ImplicitMethod ImplicitSurface::Method() const {
-    return options_.singleOctree ? ImplicitMethod::Kb89 : ImplicitMethod::Patches;
+std::string ImplicitSurface::SetMethod(ImplicitMethod method) {
+    ImplicitOverrides overrides;
+    overrides.method = method;
+    return ApplyOverrides(overrides);
 }
 
-void ImplicitSurface::SetMethod(ImplicitMethod method) {
-    options_.singleOctree = method == ImplicitMethod::Kb89;
-    options_.octree =
-        MethodSettings(options_.singleOctree, options_.octree, options_.patchesDRatio);
+std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) {
+    if (overrides.method) {
+        const MethodEntry& entry = MethodEntryOf(*overrides.method);
+        if (entry.check) {
+            std::string error = entry.check(terms_);
+            if (!error.empty()) return label_ + ": " + error;
+        }
+        options_.method = *overrides.method;
+        options_.octree = MethodSettings(options_.method, options_.octree, options_.patchesDRatio);
+    }
+    if (overrides.maxDepth) options_.octree.maxDepth = *overrides.maxDepth;
+    if (overrides.dRatio) {
+        options_.patchesDRatio = *overrides.dRatio;
+        if (options_.method != ImplicitMethod::Kb89) options_.octree.dRatio = *overrides.dRatio;
+    }
+    if (overrides.tolerance) {
+        options_.octree.tolerance = *overrides.tolerance;
+        options_.octree.minWidth = *overrides.tolerance;
+    }
+    if (overrides.step) options_.marchStep = *overrides.step;
+    for (const auto& [name, on] : overrides.switches) *OctreeSwitch(options_.octree, name) = on;
     Build();
+    return {};
 }
 
 std::string ImplicitSurface::PatchName(const PrimitiveHit& hit) const {
@@ -258,8 +265,18 @@ void ImplicitSurface::BuildStructures() {
     patches_.clear();
     trees_.clear();
     bounds_ = Bounds3();
+    baseline_.reset();
     const double threshold = options_.threshold;
-    if (options_.singleOctree) {
+    if (const MethodEntry& entry = MethodEntryOf(options_.method); entry.create) {
+        bounds_ = PositiveSupportBounds(whole_);
+        MethodParams params;
+        params.threshold = threshold;
+        params.tolerance = options_.octree.tolerance;
+        params.step = options_.marchStep;
+        baseline_ = entry.create(whole_, params);
+        return;
+    }
+    if (options_.method == ImplicitMethod::Kb89) {
         // The surface lies where some positive term is positive (F = T > 0).
         for (const FieldTerm& t : terms_) {
             if (t.weight > 0) bounds_.Extend(TermSupportBounds(t));
@@ -332,12 +349,20 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             if (maxDepth < 0 || maxDepth > 16) args.Fail("octree depth must be in [0, 16]");
             if (args.PeekNumber()) dRatio = args.ReadNumber();
         } else if (args.Accept("method")) {
-            if (args.Accept("patches")) {
-                options.singleOctree = false;
-            } else if (args.Accept("kb89")) {
-                options.singleOctree = true;
-            } else {
-                args.Fail("expected 'patches' or 'kb89' after 'method'");
+            // Accept() rather than a name: method words such as `sphere` are keywords of the
+            // scene language.
+            const MethodEntry* chosen = nullptr;
+            for (const MethodEntry& entry : MethodRegistry()) {
+                if (args.Accept(entry.name)) {
+                    chosen = &entry;
+                    break;
+                }
+            }
+            if (!chosen) args.Fail("expected a method after 'method': " + ImplicitMethodNames());
+            options.method = chosen->method;
+            if (options.method == ImplicitMethod::March && args.PeekNumber()) {
+                options.marchStep = args.ReadNumber();
+                if (!(options.marchStep > 0)) args.Fail("the march step must be > 0");
             }
         } else if (args.Accept("field")) {
             defaultKernel = ReadKernel(args);
@@ -401,15 +426,17 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             }
         }
     }
-    if (!blends.empty() && options.singleOctree) {
-        args.Warn("'blend' is ignored with 'method kb89' (one field, everything blends)");
+    if (!blends.empty() && options.method != ImplicitMethod::Patches) {
+        args.Warn(StringPrintf("'blend' is ignored with 'method %s' (one field, everything "
+                               "blends)",
+                               ImplicitMethodName(options.method)));
     }
     OctreeSettings declared;
     declared.maxDepth = maxDepth;
     declared.tolerance = tolerance;
     declared.minWidth = tolerance;
     options.patchesDRatio = dRatio;
-    options.octree = MethodSettings(options.singleOctree, declared, dRatio);
+    options.octree = MethodSettings(options.method, declared, dRatio);
 
     std::vector<FieldTerm> terms(elements.size());
     bool animated = false, anyPositive = false;
@@ -422,6 +449,10 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     if (!anyPositive) {
         args.Warn("implicit object without a skeleton of positive weight, discarded");
         return nullptr;
+    }
+    if (const MethodEntry& entry = MethodEntryOf(options.method); entry.check) {
+        std::string error = entry.check(terms);
+        if (!error.empty()) args.Fail(error);
     }
     auto surface = std::make_shared<ImplicitSurface>(std::move(terms), std::move(options));
     if (animated) {
@@ -468,7 +499,14 @@ bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
 }
 
 bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const {
-    if (options_.singleOctree) {
+    if (baseline_) {
+        std::optional<double> t = baseline_->FirstRoot(ray, tMin, tMax);
+        if (!t) return false;
+        hit.t = *t;
+        hit.part = -1;
+        return true;
+    }
+    if (options_.method == ImplicitMethod::Kb89) {
         std::optional<double> t = trees_.front().FirstRoot(ray, tMin, tMax);
         if (!t) return false;
         hit.t = *t;

@@ -5,9 +5,12 @@
 //   threshold T            iso-value (default 1; must be > 0). Inside: F > T.
 //   tolerance Eps          root accuracy in object-space distance (default 1e-7)
 //   octree MaxDepth [Dratio]   octree depth limit (default 6) and Gascuel's Dratio (2)
-//   method patches|kb89    patches (default): one LG octree per implicit patch, improved
+//   method patches|kb89|march [Step]|sphere|segment|polynomial|exact
+//                          patches (default): one LG octree per implicit patch, improved
 //                          heuristics; kb89: one octree over the whole sum with Kalra &
-//                          Barr's heuristics only (blend statements are then ignored)
+//                          Barr's heuristics only; the others are the baselines of
+//                          method_registry.h on the plain sum (README.md, "Methods"). Blend
+//                          statements are ignored by every method but patches.
 //   field linear|quadratic Thickness Stiffness Radius  |  field blob Strength Radius
 //                          default kernel of the skeletons that follow (initially
 //                          `field quadratic 1 1 2`)
@@ -40,25 +43,23 @@
 #include <vector>
 
 #include "libcommon/arg_reader.h"
+#include "libobj/implicit/implicit_overrides.h"
 #include "libobj/implicit/lg_octree.h"
+#include "libobj/implicit/method_registry.h"
 #include "libobj/primitive.h"
 
 namespace rs {
 
-enum class ImplicitMethod { Patches, Kb89 };
-
-// "patches" / "kb89" <-> ImplicitMethod; ParseImplicitMethod returns false on other words.
-bool ParseImplicitMethod(const std::string& word, ImplicitMethod& method);
-const char* ImplicitMethodName(ImplicitMethod method);
-
 struct ImplicitOptions {
     double threshold = 1;
-    // The search and build settings of the current method.
+    // The search and build settings of the octree methods; octree.tolerance is every
+    // method's root accuracy.
     OctreeSettings octree;
     // Gascuel's Dratio as declared, restored when the method becomes Patches again.
     double patchesDRatio = 2;
-    // One octree over the plain sum instead of patches (the "kb89" method).
-    bool singleOctree = false;
+    ImplicitMethod method = ImplicitMethod::Patches;
+    // The march step (object-space distance); <= 0: DefaultMarchStep.
+    double marchStep = 0;
     // The declared blend graph; used only in patches mode.
     BlendMode blendMode = BlendMode::Automatic;
     std::vector<std::pair<int, int>> blendPairs;  // term indices, Explicit mode only
@@ -89,12 +90,16 @@ class ImplicitSurface final : public Primitive {
     const std::vector<FieldTerm>& Terms() const { return terms_; }
     int PatchCount() const { return static_cast<int>(patches_.size()); }
 
-    ImplicitMethod Method() const;
+    ImplicitMethod Method() const { return options_.method; }
     // Switches the intersection method (and the octree heuristics that go with it, keeping
-    // the declared depth, Dratio and tolerance) and rebuilds. Used by command-line overrides.
-    void SetMethod(ImplicitMethod method);
+    // the declared depth, Dratio and tolerance) and rebuilds. Returns an error message,
+    // leaving the object unchanged, when the method cannot serve its terms (polynomial).
+    std::string SetMethod(ImplicitMethod method);
+    // Applies command-line overrides (the method first, then depth, Dratio, tolerance, step
+    // and the octree switches) and rebuilds once; an error as for SetMethod.
+    std::string ApplyOverrides(const ImplicitOverrides& overrides);
     // The name of the skeleton owning the patch of a hit, or empty when the hit carries no
-    // patch (kb89: one field for the whole object).
+    // patch (every method but patches: one field for the whole object).
     std::string PatchName(const PrimitiveHit& hit) const;
     // "Implicit object N", the prefix of this object's statistics counters.
     const std::string& Label() const { return label_; }
@@ -130,6 +135,8 @@ class ImplicitSurface final : public Primitive {
     std::function<std::vector<FieldTerm>(double)> termsAt_;
     std::vector<Patch> patches_;
     std::vector<LGOctree> trees_;  // one per patch, or the single octree
+    // The baseline method (march, sphere, ...) over whole_, when the method has a factory.
+    std::unique_ptr<IntersectionMethod> baseline_;
     Field whole_;                   // the plain sum (normals in single-octree mode)
     Bounds3 bounds_;
     std::vector<BvhNode> bvh_;  // root at 0 when there are patches

@@ -185,7 +185,7 @@ TEST(ImplicitSurface, ManyPatchesMatchTheSingleOctree) {
     }
     ImplicitSurface patches(terms, ImplicitOptions{});
     ImplicitOptions single;
-    single.singleOctree = true;
+    single.method = ImplicitMethod::Kb89;
     ImplicitSurface whole(terms, single);
     EXPECT_EQ(patches.PatchCount(), 150);
     int hits = 0;
@@ -247,6 +247,57 @@ TEST(ImplicitSurface, AnimatedSkeletonsRebuildPerFrame) {
     p->PrepareFrame(1.0);
     EXPECT_NEAR(*Hit(*p, ray), 5.5, 1e-7);
     EXPECT_TRUE(p->Bounds().Contains({1.5, 0, 0}));
+}
+
+// `method NAME [Step]`: every method finds the sphere of radius e = 0.5 at t = 4.5, the
+// baselines hit with part −1 (no patch), rebuild per frame like the octree methods, and blend
+// statements are ignored with a warning.
+TEST(ImplicitSurface, MethodStatementSelectsTheBaselines) {
+    for (const char* method : {"march", "march 0.01", "sphere", "segment", "exact", "kb89"}) {
+        auto p = Parse(std::string("tolerance 1e-9 method ") + method +
+                       " field quadratic 0.5 2 1.2 point a TIME 0 0 end");
+        ASSERT_TRUE(p) << method;
+        auto* surface = dynamic_cast<ImplicitSurface*>(p.get());
+        ASSERT_TRUE(surface);
+        const std::string name = std::string(method).substr(0, std::string(method).find(' '));
+        EXPECT_EQ(ImplicitMethodName(surface->Method()), name);
+        PrimitiveHit hit;
+        Ray ray{{-5, 0, 0}, {1, 0, 0}};
+        auto t = Hit(*p, ray, &hit);
+        ASSERT_TRUE(t) << method;
+        EXPECT_NEAR(*t, 4.5, 1e-9) << method;
+        EXPECT_EQ(hit.part, -1) << method;
+        EXPECT_EQ(surface->PatchName(hit), "") << method;
+        EXPECT_NEAR(p->Normal(ray.At(*t), hit).geometric.x, -1, 1e-9) << method;
+        p->PrepareFrame(1.0);
+        EXPECT_NEAR(*Hit(*p, ray), 5.5, 1e-9) << method;
+    }
+    TokenReader blended("method sphere point a 0 0 0 point b 1 0 0 blend a b end");
+    ASSERT_TRUE(ImplicitSurface::Create(blended));
+    ASSERT_EQ(blended.warnings.size(), 1u);
+    EXPECT_NE(blended.warnings[0].find("'method sphere'"), std::string::npos);
+}
+
+TEST(ImplicitSurface, MethodErrors) {
+    for (const char* text : {"method bisection point a 0 0 0 end",
+                             "method march 0 point a 0 0 0 end",
+                             "method polynomial point a 0 0 0 end",
+                             "method polynomial field blob 1 1 segment s 0 0 0 1 0 0 end"}) {
+        TokenReader reader(text);
+        EXPECT_THROW(ImplicitSurface::Create(reader), FatalError) << text;
+    }
+    auto blob = Parse("threshold 0.5 method polynomial field blob 1 1 point a 0 0 0 end");
+    ASSERT_TRUE(blob);
+    auto t = Hit(*blob, Ray{{0, 0, -5}, {0, 0, 1}});
+    ASSERT_TRUE(t);
+    EXPECT_NEAR(*t, 5 - std::sqrt(1 - std::sqrt(0.5)), 1e-12);
+    // SetMethod refuses polynomial for Gascuel kernels and leaves the object as it was.
+    auto gascuel = Parse("point a 0 0 0 end");
+    auto* surface = dynamic_cast<ImplicitSurface*>(gascuel.get());
+    EXPECT_NE(surface->SetMethod(ImplicitMethod::Polynomial).find("polynomial"), std::string::npos);
+    EXPECT_EQ(surface->Method(), ImplicitMethod::Patches);
+    EXPECT_EQ(surface->SetMethod(ImplicitMethod::Exact), "");
+    EXPECT_EQ(surface->Method(), ImplicitMethod::Exact);
 }
 
 TEST(ImplicitSurface, NoPositiveSkeletonIsDiscardedWithWarning) {

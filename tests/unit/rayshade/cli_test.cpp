@@ -85,5 +85,32 @@ TEST(CommandLine, LimitOptionRaisesALimitAndRejectsNonsense) {
     EXPECT_EQ(Limits().rayDepth, 64);
 }
 
+TEST(CommandLine, ImplicitOverrides) {
+    CommandLine cl;
+    std::string error;
+    EXPECT_TRUE(cl.implicit.Empty());
+    ASSERT_TRUE(Parse({"-M", "segment", "-I", "1e-4", "-K", "7", "-J", "-1", "-B", "0.02", "-H",
+                       "1bis=off", "-H", "t3=on", "scene.ray"},
+                      cl, error))
+        << error;
+    ASSERT_TRUE(cl.implicit.method);
+    EXPECT_EQ(*cl.implicit.method, ImplicitMethod::Segment);
+    EXPECT_EQ(*cl.implicit.tolerance, 1e-4);
+    EXPECT_EQ(*cl.implicit.maxDepth, 7);
+    EXPECT_EQ(*cl.implicit.dRatio, -1);
+    EXPECT_EQ(*cl.implicit.step, 0.02);
+    ASSERT_EQ(cl.implicit.switches.size(), 2u);
+    EXPECT_EQ(cl.implicit.switches[0], std::make_pair(std::string("1bis"), false));
+    EXPECT_EQ(cl.implicit.switches[1], std::make_pair(std::string("t3"), true));
+    const std::vector<std::vector<std::string>> bad = {
+        {"-M", "bisection"}, {"-I", "0"}, {"-K", "17"}, {"-B", "-1"}, {"-H", "zz=on"},
+        {"-H", "1bis=maybe"}, {"-M"}};
+    for (const auto& args : bad) {
+        CommandLine c;
+        EXPECT_FALSE(Parse(args, c, error)) << args[0];
+        EXPECT_FALSE(error.empty());
+    }
+}
+
 }  // namespace
 }  // namespace rs

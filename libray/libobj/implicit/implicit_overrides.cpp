@@ -1,0 +1,102 @@
+#include "libobj/implicit/implicit_overrides.h"
+
+#include <set>
+
+#include "libcommon/error.h"
+#include "libobj/implicit/implicit_surface.h"
+#include "libobj/object.h"
+
+namespace rs {
+
+namespace {
+
+struct SwitchEntry {
+    const char* name;
+    bool OctreeSettings::*flag;
+};
+
+constexpr SwitchEntry kSwitches[] = {
+    {"range", &OctreeSettings::useValueRange},
+    {"patch", &OctreeSettings::usePredominancePruning},
+    {"1", &OctreeSettings::useHeuristic1},
+    {"1bis", &OctreeSettings::useHeuristic1bis},
+    {"3", &OctreeSettings::useHeuristic3},
+    {"3bis", &OctreeSettings::useHeuristic3bis},
+    {"4", &OctreeSettings::useHeuristic4},
+    {"5", &OctreeSettings::useHeuristic5},
+    {"0bis", &OctreeSettings::useTest0bis},
+    {"t1", &OctreeSettings::useTest1},
+    {"2bis", &OctreeSettings::useTest2bis},
+    {"t3", &OctreeSettings::useTest3},
+};
+
+bool Apply(Object& node, const ImplicitOverrides& overrides, std::set<const Object*>& seen,
+           int& count, std::string& error) {
+    if (!seen.insert(&node).second) return true;
+    switch (node.kind()) {
+        case Object::Kind::Primitive:
+            if (auto* implicit = dynamic_cast<ImplicitSurface*>(node.primitive())) {
+                error = implicit->ApplyOverrides(overrides);
+                if (!error.empty()) return false;
+                ++count;
+            }
+            return true;
+        case Object::Kind::Aggregate:
+            for (const std::shared_ptr<Object>& child : node.aggregate()->Children()) {
+                if (!Apply(*child, overrides, seen, count, error)) return false;
+            }
+            return true;
+        case Object::Kind::Instance:
+            return Apply(*node.instanceOf(), overrides, seen, count, error);
+    }
+    return true;
+}
+
+}  // namespace
+
+const std::vector<std::string>& OctreeSwitchNames() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> n;
+        for (const SwitchEntry& e : kSwitches) n.push_back(e.name);
+        return n;
+    }();
+    return names;
+}
+
+bool* OctreeSwitch(OctreeSettings& settings, const std::string& name) {
+    for (const SwitchEntry& e : kSwitches) {
+        if (name == e.name) return &(settings.*e.flag);
+    }
+    return nullptr;
+}
+
+bool ParseOctreeSwitch(const std::string& assignment, ImplicitOverrides& overrides,
+                       std::string& error) {
+    const size_t eq = assignment.find('=');
+    const std::string name = assignment.substr(0, eq);
+    const std::string value = eq == std::string::npos ? "" : assignment.substr(eq + 1);
+    OctreeSettings probe;
+    if (!OctreeSwitch(probe, name)) {
+        std::string names;
+        for (const std::string& n : OctreeSwitchNames()) names += (names.empty() ? "" : ", ") + n;
+        error = StringPrintf("unknown octree switch '%s' (expected NAME=on|off, NAME one of %s)",
+                             name.c_str(), names.c_str());
+        return false;
+    }
+    if (value != "on" && value != "off") {
+        error = StringPrintf("octree switch '%s' needs =on or =off", name.c_str());
+        return false;
+    }
+    overrides.switches.emplace_back(name, value == "on");
+    return true;
+}
+
+int ApplyImplicitOverrides(Object& root, const ImplicitOverrides& overrides, std::string& error) {
+    std::set<const Object*> seen;
+    int count = 0;
+    error.clear();
+    if (!Apply(root, overrides, seen, count, error)) return -1;
+    return count;
+}
+
+}  // namespace rs

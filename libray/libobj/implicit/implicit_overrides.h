@@ -1,0 +1,51 @@
+// Layer 7 of the implicit module: command-line overrides of every implicit object's
+// intersection settings (rayquery -m/-e/-d/-r/-k/-H, rayshade -M/-I/-K/-J/-B/-H).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "libobj/implicit/lg_octree.h"
+#include "libobj/implicit/method_registry.h"
+
+namespace rs {
+
+class Object;
+
+struct ImplicitOverrides {
+    std::optional<ImplicitMethod> method;
+    std::optional<double> tolerance;  // every method's root accuracy (object-space distance)
+    std::optional<int> maxDepth;      // octree depth (patches, kb89)
+    std::optional<double> dRatio;     // Gascuel's Dratio (patches)
+    std::optional<double> step;       // march step (object-space distance)
+    // OctreeSettings switches by name (OctreeSwitchNames), applied in order after the
+    // method's defaults.
+    std::vector<std::pair<std::string, bool>> switches;
+
+    bool Empty() const {
+        return !method && !tolerance && !maxDepth && !dRatio && !step && switches.empty();
+    }
+};
+
+// The names of the octree switches, in the order of OctreeSettings:
+//   range (useValueRange), patch (usePredominancePruning), 1, 1bis, 3, 3bis, 4, 5 (build
+//   heuristics useHeuristic…), 0bis, t1, 2bis, t3 (search tests useTest0bis, useTest1,
+//   useTest2bis, useTest3).
+const std::vector<std::string>& OctreeSwitchNames();
+// The flag named `name` in `settings`, or null for an unknown name.
+bool* OctreeSwitch(OctreeSettings& settings, const std::string& name);
+
+// Parses "NAME=on|off" (NAME from OctreeSwitchNames) and appends it to overrides.switches;
+// false with a message otherwise.
+bool ParseOctreeSwitch(const std::string& assignment, ImplicitOverrides& overrides,
+                       std::string& error);
+
+// Applies the overrides to every implicit object below `root` (each shared node once) and
+// rebuilds them. Returns the number of objects changed, or −1 with `error` set when one
+// cannot take the method (e.g. polynomial on a non-blob object); objects met before it keep
+// their new settings.
+int ApplyImplicitOverrides(Object& root, const ImplicitOverrides& overrides, std::string& error);
+
+}  // namespace rs

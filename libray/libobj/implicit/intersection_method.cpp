@@ -1,0 +1,23 @@
+#include "libobj/implicit/intersection_method.h"
+
+#include <cmath>
+
+#include "libobj/implicit/root_finding.h"
+
+namespace rs {
+
+Bounds3 PositiveSupportBounds(const Field& field) {
+    Bounds3 box;
+    for (const FieldTerm& t : field.Terms()) {
+        if (t.weight > 0) box.Extend(TermSupportBounds(t));
+    }
+    return box;
+}
+
+double BisectBracket(const RayField& g, double a, double ga, double b, double gb, double tolT) {
+    // 2000 halvings exhaust any double bracket (BisectRoot stops at adjacent doubles).
+    std::optional<RootResult> r = BisectRoot(g, a, ga, b, gb, tolT, 2000);
+    return r ? r->root : (std::abs(ga) <= std::abs(gb) ? a : b);
+}
+
+}  // namespace rs

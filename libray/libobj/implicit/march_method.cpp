@@ -1,0 +1,50 @@
+#include "libobj/implicit/march_method.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rs {
+
+double DefaultMarchStep(const Field& field) {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const FieldTerm& t : field.Terms()) {
+        if (t.weight <= 0) continue;
+        const Kernel& k = t.kernel;
+        smallest = std::min(smallest, k.Kind() == KernelKind::Blob ? 0.5 * k.Radius()
+                                                                   : k.Thickness());
+    }
+    return smallest < std::numeric_limits<double>::infinity() ? 0.25 * smallest : 1.0;
+}
+
+MarchMethod::MarchMethod(const Field& field, const MethodParams& params)
+    : field_(field),
+      threshold_(params.threshold),
+      tolerance_(params.tolerance),
+      step_(params.step > 0 ? params.step : DefaultMarchStep(field)),
+      box_(PositiveSupportBounds(field)) {}
+
+std::optional<double> MarchMethod::FirstRoot(const Ray& ray, double tMin, double tMax) const {
+    double t0 = tMin, t1 = tMax;
+    if (!box_.ClipRay(ray, t0, t1)) return std::nullopt;
+    const RayField g{field_, ray, threshold_};
+    const double length = Length(ray.dir);
+    const double h = step_ / length, tolT = tolerance_ / length;
+    double ta = t0, ga = g(ta);
+    while (ta < t1) {
+        // The next sample; the clipped end is always sampled, and a step too small to move
+        // a double moves to the next representable t instead.
+        double tb = std::min(std::max(ta + h, std::nextafter(ta, t1)), t1);
+        double gb = g(tb);
+        if (gb == 0 && tb > tMin && tb < tMax) return tb;
+        if (ClassChanges(ga, gb)) {
+            double root = BisectBracket(g, ta, ga, tb, gb, tolT);
+            if (root > tMin && root < tMax) return root;
+        }
+        ta = tb;
+        ga = gb;
+    }
+    return std::nullopt;
+}
+
+}  // namespace rs
