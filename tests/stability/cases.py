@@ -559,7 +559,8 @@ def build():
     add_case("patch-boundary", "patch boundary", "blended pair: hits on the bisecting plane "
              "and 1e-12 … 1e-9 beside it, patch a on the plane", *patch_boundary())
     add_case("patch-union", "patch boundary", "unblended pair: exact union of two spheres, "
-             "crease on the bisecting plane", *patch_union())
+             "crease on the bisecting plane (methods other than patches sum every skeleton, "
+             "ignoring blend lists: they blend the pair and fail by design)", *patch_union())
     add_case("contact", "contact zone", "needs issue 5 (the `contact` keyword)", None, [])
     add_case("negative", "negative field", "hollow shell (inner sphere (4 - √2)/3 seen from "
              "the cavity), cancelling pair, negative alone, carved dent", *negative())

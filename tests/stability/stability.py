@@ -7,8 +7,8 @@
                                                                   the pass/fail table
   stability.py --list                 names of the cases that have a scene, one a line
 
-A method that rayquery rejects (`-m NAME` exits with an error on a plain scene) is "n/a"
-for every case; a case whose scene a method rejects is "n/a" for that case (for example a
+A method that rayquery rejects (`-m NAME` exits with an error on a scene without implicit
+objects) is "n/a" for every case; a case whose scene a method rejects is "n/a" for that case (for example a
 kernel the method does not handle). Everything else is judged ray by ray against the
 analytic expectations of cases.py. With --markdown the status is 0 unless a --require'd
 method is unavailable or fails a case: methods that miss cases are expected failures,
@@ -27,7 +27,8 @@ import cases as stability_cases  # noqa: E402
 
 ALL_METHODS = ("patches", "kb89", "march", "sphere", "segment", "polynomial", "exact")
 DEFAULT_METHOD = "patches"
-PROBE_SCENE = stability_cases.unit_sphere_scene(stability_cases.UNIT_QUADRATIC)
+SHOWN_FAILURES = 3  # failing rays listed per method and case in the markdown
+PROBE_SCENE = stability_cases.SURFACE + "sphere s 1 0 0 0\n"  # no implicit object to reject
 
 
 class Answer:
@@ -46,8 +47,9 @@ class Answer:
 
     def describe(self):
         if not self.hit:
-            return "miss"
-        return "hit t=%.17g n=(%.6g, %.6g, %.6g) patch %s" % ((self.t,) + self.n + (self.patch,))
+            return "miss (%d evals)" % self.evals
+        return "hit t=%.17g n=(%.6g, %.6g, %.6g) patch %s (%d evals)" % (
+            (self.t,) + self.n + (self.patch, self.evals))
 
 
 class Run:
@@ -87,7 +89,7 @@ def judge(ray, answer):
     if not answer.hit:
         if isinstance(expect, stability_cases.Either):
             return None, None
-        return "expected hit t=%.17g, got miss" % expect.t, None
+        return "expected hit t=%.17g, got %s" % (expect.t, answer.describe()), None
     length = math.sqrt(sum(x * x for x in ray.d))
     error = abs(answer.t - expect.t) * length
     if not all(math.isfinite(x) for x in answer.n + answer.p) or not math.isfinite(answer.t):
@@ -178,11 +180,17 @@ def markdown(cases, methods, outcomes, available):
     missing = [m for m in methods if not available[m]]
     if missing:
         out += ["", "Not available in this build: " + ", ".join(missing) + "."]
-    failures = [(m, c.name, f) for c in cases for m in methods
-                for f in outcomes[(c.name, m)].failures]
-    if failures:
-        out += ["", "## Failing rays", ""]
-        out += ["- `%s` / %s: %s" % f for f in failures]
+    listed = []
+    for c in cases:
+        for m in methods:
+            failures = outcomes[(c.name, m)].failures
+            listed += ["- `%s` / %s: %s" % (m, c.name, f) for f in failures[:SHOWN_FAILURES]]
+            if len(failures) > SHOWN_FAILURES:
+                listed.append("- `%s` / %s: … and %d more" %
+                              (m, c.name, len(failures) - SHOWN_FAILURES))
+    if listed:
+        out += ["", "## Failing rays (the first %d per method and case)" % SHOWN_FAILURES, ""]
+        out += listed
     return "\n".join(out) + "\n"
 
 
