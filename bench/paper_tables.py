@@ -45,7 +45,6 @@ PAPER = {  # Gascuel 1995, §3.2 table: preprocessing s, intersection s, memory 
 
 
 CHAIN_AND_FIGURES = ("fig3a", "fig3b", "fig5a", "fig5b", "fig6", "chain100")
-COMMENTARY = "<!-- commentary: kept when the tables are regenerated -->"
 
 
 def test_set():
@@ -184,14 +183,7 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         table1 = depth_table(bins["rayshade"], scenes, depths, args.reps, work)
     table2 = switch_table(bins["rayquery"], scenes, args.reps)
-    kept = ""
-    if os.path.exists(args.out):
-        with open(args.out) as fh:
-            old = fh.read()
-        if COMMENTARY in old:
-            kept = old[old.index(COMMENTARY):]
-    with open(args.out, "w") as fh:
-        fh.write(markdown(depths, table1, table2, args.reps) + "\n" + (kept or COMMENTARY + "\n"))
+    raybench.write_with_commentary(args.out, markdown(depths, table1, table2, args.reps))
     print("wrote " + args.out)
 
 

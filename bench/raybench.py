@@ -156,3 +156,19 @@ def median(values):
     values = sorted(values)
     n = len(values)
     return values[n // 2] if n % 2 else 0.5 * (values[n // 2 - 1] + values[n // 2])
+
+
+COMMENTARY = "<!-- commentary: kept when the tables are regenerated -->"
+
+
+def write_with_commentary(path, generated):
+    """Writes generated markdown to path, keeping the hand-written part of the existing
+    file: everything from the COMMENTARY marker on."""
+    kept = COMMENTARY + "\n"
+    if os.path.exists(path):
+        with open(path) as fh:
+            old = fh.read()
+        if COMMENTARY in old:
+            kept = old[old.index(COMMENTARY):]
+    with open(path, "w") as fh:
+        fh.write(generated + "\n" + kept)

@@ -66,10 +66,6 @@ class Skeleton:
         self.name, self.centre, self.kernel, self.weight = name, centre, kernel, weight
 
 
-def field(skeletons, p):
-    return sum(s.weight * s.kernel(math.dist(p, s.centre)) for s in skeletons)
-
-
 def bisect(g, lo, hi, steps=200):
     """Root of g on [lo, hi] (g(lo), g(hi) of opposite signs), to the working precision
     of the numbers given (float or Decimal)."""
@@ -193,7 +189,7 @@ def sphere_roots(o, d, c, radius):
     return float((-bd - root) / ad), float((-bd + root) / ad)
 
 
-def sphere_hit(o, d, c, radius, tmin=0.0, slope=None, extra=0.0, solid_outside=False):
+def sphere_hit(o, d, c, radius, tmin=0.0, slope=None, solid_outside=False):
     """The first sphere root above tmin as a Hit with the solid's outward normal there
     (pointing away from the centre, or towards it when the solid lies outside the sphere,
     as around a cavity). The allowance adds the field's rounding over the slope of F along
@@ -204,7 +200,7 @@ def sphere_hit(o, d, c, radius, tmin=0.0, slope=None, extra=0.0, solid_outside=F
     normal = unit(add(p, c, -1) if not solid_outside else add(c, p, -1))
     dn = unit(d)
     cosine = abs(sum(x * y for x, y in zip(normal, dn)))
-    allow = TOLERANCE + ROUNDING_ULPS * ulp_at(*(o + c)) + extra
+    allow = TOLERANCE + ROUNDING_ULPS * ulp_at(*(o + c))
     if slope:
         allow += FIELD_ROUNDING / (slope * max(cosine, 1e-300))
     return Hit(t, allow, normal, curvature_radius=radius)
@@ -222,7 +218,7 @@ def frame(v):
 UNIT_QUADRATIC = quadratic(1.0, 1.0, 2.0)  # lone point: sphere of radius e = 1; |∇F| = k = 1
 UNIT_BLOB = blob(1.0, 2.0)                  # at T = 0.5625 = 0.75²: radius R·sqrt(1 - 0.75) = 1
 BLOB_THRESHOLD = 0.5625
-BLOB_SLOPE = 1.5                            # |f'(1)| = 4s·r/R²·(1 - r²/R²) = 4·1/4·3/4
+BLOB_SLOPE = 0.75                           # |f'(1)| = 4s·r/R²·(1 - r²/R²) = 4·1/4·3/4
 DELTAS = (1e-3, 1e-5, 1e-7, 1e-9)
 CENTRE = (0.25, -0.5, 0.125)
 

@@ -8,8 +8,8 @@
   stability.py --list                 names of the cases that have a scene, one a line
 
 A method that rayquery rejects (`-m NAME` exits with an error on a scene without implicit
-objects) is "n/a" for every case; a case whose scene a method rejects is "n/a" for that case (for example a
-kernel the method does not handle). Everything else is judged ray by ray against the
+objects) is "n/a" for every case; a case whose scene a method rejects is "n/a" for that
+case (for example a kernel the method does not handle). Everything else is judged ray by ray against the
 analytic expectations of cases.py. With --markdown the status is 0 unless a --require'd
 method is unavailable or fails a case: methods that miss cases are expected failures,
 recorded in the table.
@@ -134,11 +134,11 @@ class Outcome:
         return "**FAIL** %d/%s, %s" % (len(self.failures), self.note, worst)
 
 
-def run_case(binary, case, method, extra_args=()):
+def run_case(binary, case, method):
     if case.scene is None:
         return Outcome("n/a", note=case.expectation)
     run = run_rayquery(binary, case.scene, [r.line() for r in case.rays],
-                       ("-m", method) + tuple(extra_args))
+                       ("-m", method))
     if run.status > 0 and not run.answers and method != DEFAULT_METHOD and \
             run_rayquery(binary, case.scene, [], ("-m", DEFAULT_METHOD)).status == 0:
         return Outcome("n/a", note="scene rejected: " + run.error.splitlines()[-1])
@@ -171,10 +171,11 @@ def markdown(cases, methods, outcomes, available):
            "exist in this build or rejects the case's scene. Scene tolerance %g; a hit passes "
            "within the tolerance plus the rounding of its inputs (cases.py, top)."
            % (DEFAULT_METHOD, stability_cases.TOLERANCE), "",
-           "| case | what is expected | rays | " + " | ".join(methods) + " |",
-           "|---|---|---|" + "---|" * len(methods)]
+           "| case | category | what is expected | rays | " + " | ".join(methods) + " |",
+           "|---|---|---|---|" + "---|" * len(methods)]
     for case in cases:
-        row = [case.name, case.expectation, str(len(case.rays)) if case.rays else "—"]
+        row = [case.name, case.category, case.expectation,
+               str(len(case.rays)) if case.rays else "—"]
         row += [outcomes[(case.name, m)].cell() for m in methods]
         out.append("| " + " | ".join(row) + " |")
     missing = [m for m in methods if not available[m]]
