@@ -5,8 +5,10 @@ Chart 1 (docs/images/speed-accuracy.png): cost per ray against error, one curve 
 swept over its knob, on (a) random rays into skeleton scenes (a random-walk chain of blob
 points as in bench/implicit.py, and a random-walk chain of quadratic-kernel segments) and
 (b) the stability suite's rays (tests/stability/cases.py). Cost: EVALS per ray as printed
-by rayquery (top row) and wall time per ray (bottom row: rayquery's wall time with the rays
-minus without them, so parsing and octree builds are excluded). Error: the 99th percentile
+by rayquery (top row) and time per ray (bottom row: rayquery's CPU time with the rays minus
+without them, so parsing and octree builds are excluded; rayquery is single-threaded, so
+this is its wall time on an idle machine, and unlike wall time it is not stretched by other
+jobs on a shared one). Error: the 99th percentile
 of |t - t_ref| over rays that both hit, relative to the pixel footprint at the hit of a
 512-pixel camera with a 30° field of view (footprint(t) = 2·t·tan(15°)/512 for a unit
 direction, t floored at 1 so secondary rays starting on a surface are judged at the scene's
@@ -22,6 +24,9 @@ Methods are selected with the scene statements of the shared contract (`method M
 and is left out ("n/a"). The automatic tolerance mode (`-f SPREAD`) is plotted as one point
 when rayquery accepts it.
 
+A curve stops after a point that took more than POINT_BUDGET seconds to measure (its finer
+knob values would take longer still); the markdown lists the points measured.
+
 Usage: bench/accuracy.py [--build DIR] [--rays N] [--sizes 10,100,1000,10000] [--quick]
 """
 import argparse
@@ -29,6 +34,7 @@ import math
 import os
 import random
 import sys
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -45,6 +51,8 @@ STEPS = (0.4, 0.2, 0.1, 0.05, 0.02)
 DEPTHS = (2, 4, 6, 8)
 TIMEOUT = 300.0       # seconds per rayquery run; a method slower than that is left out
 TIMED_RAYS = 10000    # queries per timing run
+POINT_BUDGET = 60.0   # seconds: a sweep point slower than that ends its curve (finer knobs
+                      # cost more; sphere tracing crawls to its step cap on grazing rays)
 
 # (curve label, knob name, knob values, statements for a knob value)
 SWEEPS = (
@@ -144,8 +152,8 @@ class Measure:
 def query(rayquery, scene, rays, args=(), timed=True):
     """(answers, seconds per ray) or None when the scene or options are rejected or the run
     times out. The time per ray comes from a second run with the rays repeated up to
-    TIMED_RAYS queries, minus a run without rays (parsing and octree builds), so process
-    start-up noise is spread over many queries."""
+    TIMED_RAYS queries, minus a run without rays (parsing and octree builds), in CPU
+    seconds, so process start-up noise is spread over many queries."""
     full = raybench.rayquery(rayquery, scene, rays, args, timeout=TIMEOUT)
     if full.status != 0 or not rays:
         return None
@@ -154,11 +162,11 @@ def query(rayquery, scene, rays, args=(), timed=True):
         return answers, float("nan")
     # A set that already took a second (sphere tracing crawling up to its step cap) is timed
     # by that run alone.
-    repeat = 1 if full.seconds > 1.0 else max(1, TIMED_RAYS // len(rays))
+    repeat = 1 if full.cpu_seconds > 1.0 else max(1, TIMED_RAYS // len(rays))
     many = full if repeat == 1 else raybench.rayquery(rayquery, scene, rays * repeat, args,
                                                       timeout=TIMEOUT)
     empty = raybench.rayquery(rayquery, scene, [], args, timeout=TIMEOUT)
-    return answers, max(many.seconds - empty.seconds, 0.0) / (repeat * len(rays))
+    return answers, max(many.cpu_seconds - empty.cpu_seconds, 0.0) / (repeat * len(rays))
 
 
 def reference(rayquery, scene, rays):
@@ -222,12 +230,16 @@ def chart_points(rayquery, sets, auto):
     curves = {}
     for label, _, values, make in SWEEPS:
         for v in values:
+            start = time.monotonic()
             m = sweep(rayquery, sets, make(v))
             print("  %-34s %-8s %s" % (label, v, "n/a" if m is None else fmt_summary(m)),
                   flush=True)
             if m is None:
                 break
             curves.setdefault(label, []).append((v, m.summary()))
+            if time.monotonic() - start > POINT_BUDGET:
+                break  # the finer knob values would cost more still
+
     if auto:
         m = sweep(rayquery, sets, ["method patches"], ("-f", repr(SPREAD)))
         if m is not None:
@@ -251,7 +263,7 @@ def plot_chart1(panels, path):
     colours = {}
     for col, (title, curves) in enumerate(panels):
         for row, (key, xlabel) in enumerate((("evals", "evaluations per ray (EVALS)"),
-                                              ("us", "wall time per ray (µs)"))):
+                                              ("us", "time per ray (µs, CPU)"))):
             ax = axes[row][col]
             for label, points in curves.items():
                 colour = colours.setdefault(label, "C%d" % (len(colours) % 10))
@@ -284,7 +296,7 @@ def plot_chart2(rows, sizes, path):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 2, figsize=(12, 5))
     for ax, key, ylabel in ((axes[0], "evals", "evaluations per ray"),
-                            (axes[1], "us", "wall time per ray (µs)")):
+                            (axes[1], "us", "time per ray (µs, CPU)")):
         for label, by_size in rows.items():
             ns = [n for n in sizes if n in by_size]
             ax.plot(ns, [max(by_size[n][key], 1e-3) for n in ns], "o-", label=label)

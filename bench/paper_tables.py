@@ -8,13 +8,17 @@ shadows on, one thread.
 Table 1 (the paper's depth table): for maximum octree depth 0..10 (min depth 3, the paper's
 setting), for `method kb89` and for `method patches` with Dratio -1 and 2 (scene statements
 `octree D R` and `method M` appended to every implicit block): preprocessing time (octree
-builds, the per-object counter of rayshade -v), rendering wall time, octree memory (per-object
-counter) and the largest peak RSS of a render. Times are medians of --reps renders per
-scene, summed over the test set, like the paper's sums.
+builds, the per-object counter of rayshade -v), rendering time (the process's CPU time minus
+preprocessing: one thread, and CPU time is not stretched by other jobs on a shared machine),
+octree memory (per-object counter) and the largest peak RSS of a render. Times are medians
+of --reps renders per scene, summed over the test set, like the paper's sums.
 
 Table 2 (heuristic 1bis and test 2bis): rayquery on the eye rays of the same scenes (one per
-pixel, 320x240), default settings, with `-H NAME=off` switches: preprocessing, query time
-(wall time with the rays minus wall time without), evaluations per ray and octree memory.
+pixel, 320x240), default settings, with `-H NAME=off` switches: preprocessing (CPU time of
+the octree rebuild the switches cause), query time (CPU time with the rays minus without),
+evaluations per ray and octree memory, each compared with the row the switch departs from.
+Besides 1bis and 2bis, the rows switch off our value-range test, which the paper did not
+have and which prunes most of what 1bis would.
 Rows whose switch rayquery does not accept read "needs -H".
 
 Usage: bench/paper_tables.py [--build DIR] [--reps N] [--depths 0,1,...] [--out FILE]
@@ -31,10 +35,18 @@ import raybench  # noqa: E402
 WIDTH, HEIGHT = 320, 240
 CONFIGS = (("kb89", "kb89", "-1"), ("patches, Dratio −1", "patches", "-1"),
            ("patches, Dratio 2", "patches", "2"))
-SWITCHES = (("all on (default)", ()),
-            ("heuristic 1bis off", ("-H", "1bis=off")),
-            ("1bis in place of 1 (heuristic 1 off)", ("-H", "1=off")),
-            ("test 2bis off", ("-H", "2bis=off")))
+# (label, rayquery switches, the row it is compared with). Every row passes at least one
+# switch, so every object is rebuilt once after parsing in every row ("1bis=on" is the
+# default: a no-op that only forces that rebuild).
+ALL_ON = "all on (default)"
+RANGE_OFF = "value-range test off (the paper's build heuristics)"
+SWITCHES = ((ALL_ON, ("-H", "1bis=on"), None),
+            ("heuristic 1bis off", ("-H", "1bis=off"), ALL_ON),
+            ("1bis in place of 1 (heuristic 1 off)", ("-H", "1=off"), ALL_ON),
+            (RANGE_OFF, ("-H", "range=off"), None),
+            ("range off, 1bis off", ("-H", "range=off", "-H", "1bis=off"), RANGE_OFF),
+            ("range off, 1bis in place of 1", ("-H", "range=off", "-H", "1=off"), RANGE_OFF),
+            ("test 2bis off", ("-H", "2bis=off"), ALL_ON))
 PAPER_DEPTHS = (0, 2, 4, 5, 6, 7, 10)
 PAPER = {  # Gascuel 1995, §3.2 table: preprocessing s, intersection s, memory Kb
     "kb89": ((0.62, 1.73, 50, 244, 710, None, None), (368, 302, 213, 167, 139, None, None),
@@ -68,8 +80,8 @@ def render(rayshade, scene, work):
         raise SystemExit("rayshade failed: " + r.stderr)
     with open(stats) as fh:
         c = raybench.counters(fh.read())
-    return {"pre": raybench.implicit_totals(c, "preprocessing time (microseconds)") / 1e6,
-            "render": c.get("Rendering wall time (sec)", float("nan")),
+    pre = raybench.implicit_totals(c, "preprocessing time (microseconds)") / 1e6
+    return {"pre": pre, "render": r.cpu_seconds - pre,
             "memory": raybench.implicit_totals(c, "octree memory (bytes)") / 1024,
             "rss": r.max_rss_kib / 1024}
 
@@ -98,9 +110,15 @@ def switch_table(rayquery, scenes, reps):
         cam = raybench.camera(text)
         rays[name] = raybench.eye_rays(cam["eyep"], cam["lookp"], cam["up"], cam["fov"][0],
                                        WIDTH, HEIGHT)
+    declared = {}
+    for name, text in scenes:
+        runs = [raybench.rayquery(rayquery, text, [], verbose=True) for _ in range(reps)]
+        c = raybench.counters(runs[0].stderr)
+        declared[name] = {"cpu": raybench.median([r.cpu_seconds for r in runs]),
+                          "memory": raybench.implicit_totals(c, "octree memory (bytes)")}
     rows = {}
-    for label, args in SWITCHES:
-        if args and not raybench.accepts(rayquery, args):
+    for label, args, _ in SWITCHES:
+        if not raybench.accepts(rayquery, args):
             rows[label] = None
             print("%-40s needs -H" % label, flush=True)
             continue
@@ -110,13 +128,17 @@ def switch_table(rayquery, scenes, reps):
             for _ in range(reps):
                 last = raybench.rayquery(rayquery, text, rays[name], args, verbose=True)
                 empty = raybench.rayquery(rayquery, text, [], args)
-                queries.append(last.seconds)
-                empties.append(empty.seconds)
+                queries.append(last.cpu_seconds)
+                empties.append(empty.cpu_seconds)
+            # Every row rebuilds each object once after the build as declared: the rebuild's
+            # CPU time is that of the run without rays less the declared scene's, and the
+            # memory counter (summed over builds) less the declared build's.
             c = raybench.counters(last.stderr)
-            total["pre"] += raybench.implicit_totals(c, "preprocessing time (microseconds)") / 1e6
+            total["pre"] += raybench.median(empties) - declared[name]["cpu"]
             total["query"] += raybench.median(queries) - raybench.median(empties)
             total["evals"] += sum(e for _, _, e in raybench.parse_answers(last.stdout))
-            total["memory"] += raybench.implicit_totals(c, "octree memory (bytes)") / 1024
+            total["memory"] += (raybench.implicit_totals(c, "octree memory (bytes)") -
+                                declared[name]["memory"]) / 1024
             total["rays"] += len(rays[name])
         rows[label] = total
         print("%-40s %s" % (label, total), flush=True)
@@ -132,14 +154,14 @@ def markdown(depths, table1, table2, reps):
            "Generated by `bench/paper_tables.sh` (see bench/paper_tables.py for what is "
            "measured). Test set: the five paper-figure scenes of `examples/implicit/` and the "
            "100-point blob chain of `bench/implicit.py`, %dx%d, one sample per pixel, shadows "
-           "on, one thread; times are medians of %d runs per scene, summed over the six scenes "
-           "(the paper sums over its four images). Minimum octree depth 3 throughout, as in the "
-           "paper." % (WIDTH, HEIGHT, reps), "",
+           "on, one thread; times (CPU seconds) are medians of %d runs per scene, summed over "
+           "the six scenes (the paper sums over its four images). Minimum octree depth 3 "
+           "throughout, as in the paper." % (WIDTH, HEIGHT, reps), "",
            "## Table 1: cost by maximum octree depth", "",
            "| configuration | row | " + " | ".join(str(d) for d in depths) + " |",
            "|---|---|" + "---|" * len(depths)]
     for label, _, _ in CONFIGS:
-        for key, name in (("pre", "preprocessing (s)"), ("render", "rendering (s)"),
+        for key, name in (("pre", "preprocessing (s)"), ("render", "rendering CPU (s)"),
                           ("memory", "octree memory (KiB)"), ("rss", "peak RSS (MiB)")):
             out.append("| %s | %s | " % (label, name) +
                        " | ".join(fmt(table1[(label, d)][key]) for d in depths) + " |")
@@ -154,18 +176,20 @@ def markdown(depths, table1, table2, reps):
             "rayquery on one eye ray per pixel of each scene (%d rays in all), default settings "
             "(patches, max depth 6, Dratio 2), one switch at a time." %
             (len(CHAIN_AND_FIGURES) * WIDTH * HEIGHT), "",
-            "| variant | preprocessing (s) | query (s) | evals/ray | octree memory (KiB) | "
-            "query time vs all on |", "|---|---|---|---|---|---|"]
-    base = table2.get(SWITCHES[0][0])
-    for label, _ in SWITCHES:
+            "| variant | preprocessing CPU (s) | query CPU (s) | evals/ray | octree memory (KiB) | "
+            "compared with | preprocessing | query | evals | memory |",
+            "|---|---|---|---|---|---|---|---|---|---|"]
+    for label, _, against in SWITCHES:
         row = table2.get(label)
         if row is None:
-            out.append("| %s | needs -H | | | | |" % label)
+            out.append("| %s | needs -H | | | | | | | | |" % label)
             continue
-        ratio = row["query"] / base["query"] if base and base["query"] > 0 else None
-        out.append("| %s | %s | %s | %s | %s | %s |" % (
+        base = table2.get(against) if against else None
+        ratios = ["" if not base else fmt(row[k] / base[k]) if base[k] else "—"
+                  for k in ("pre", "query", "evals", "memory")]
+        out.append("| %s | %s | %s | %s | %s | %s | %s |" % (
             label, fmt(row["pre"]), fmt(row["query"]), fmt(row["evals"] / row["rays"]),
-            fmt(row["memory"]), fmt(ratio)))
+            fmt(row["memory"]), against or "", " | ".join(ratios)))
     return "\n".join(out) + "\n"
 
 

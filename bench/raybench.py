@@ -23,14 +23,18 @@ def binaries(build):
 
 
 class Result:
-    def __init__(self, status, stdout, stderr, seconds, max_rss_kib):
+    """A finished child: status, output, wall seconds, CPU seconds (user + system, all its
+    threads) and peak RSS. The benches time with CPU seconds: the machines they run on are
+    shared, and other jobs stretch wall time but not a single-threaded child's CPU time."""
+
+    def __init__(self, status, stdout, stderr, seconds, cpu_seconds, max_rss_kib):
         self.status, self.stdout, self.stderr = status, stdout, stderr
-        self.seconds, self.max_rss_kib = seconds, max_rss_kib
+        self.seconds, self.cpu_seconds, self.max_rss_kib = seconds, cpu_seconds, max_rss_kib
 
 
 def run(command, stdin_text="", timeout=None):
-    """Runs a command, feeding stdin_text; wall time and the child's own peak RSS. After
-    `timeout` seconds the child is killed (status -9, `timed_out` set)."""
+    """Runs a command, feeding stdin_text, and measures it (Result). After `timeout` wall
+    seconds the child is killed (status -9, `timed_out` set)."""
     with tempfile.TemporaryFile("w+") as inp, tempfile.TemporaryFile("w+") as out, \
             tempfile.TemporaryFile("w+") as err:
         inp.write(stdin_text)
@@ -47,7 +51,8 @@ def run(command, stdin_text="", timeout=None):
         proc.returncode = os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
-        result = Result(proc.returncode, out.read(), err.read(), seconds, usage.ru_maxrss)
+        result = Result(proc.returncode, out.read(), err.read(), seconds,
+                        usage.ru_utime + usage.ru_stime, usage.ru_maxrss)
         result.timed_out = bool(timeout) and seconds >= timeout
         return result
 
