@@ -28,6 +28,7 @@ import os
 import sys
 import tempfile
 
+sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import implicit as chain_bench  # noqa: E402
 import raybench  # noqa: E402
