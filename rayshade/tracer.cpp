@@ -1,6 +1,7 @@
 #include "rayshade/tracer.h"
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "libcommon/constants.h"
@@ -131,8 +132,10 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
     sp.smooth = normals.smooth;
 
     Vec3 p = pPrimitive, n = normals.shading, ng = normals.geometric;
-    TextureContext ctx;
+    // Built for textured hits only: it is large, and most hits have no textures.
+    std::optional<TextureContext> context;
     if (lastTextured >= 0) {
+        TextureContext& ctx = context.emplace();
         ctx.primitive = hit.primitive;
         ctx.primitiveHit = hit.prim;
         ctx.pointPrimitive = pPrimitive;
@@ -152,10 +155,11 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
             ng = Normalize(t.ApplyNormal(ng));
             if (texturing) {
                 p = t.ApplyPoint(p);
-                ctx.nodeFromPrimitive = ctx.nodeFromPrimitive.Then(t);
+                context->nodeFromPrimitive = context->nodeFromPrimitive.Then(t);
             }
         }
         if (!texturing || hit.path[i]->textures.empty()) continue;
+        TextureContext& ctx = *context;
         ctx.point = p;
         ctx.normal = n;
         ctx.geometricNormal = ng;
