@@ -61,6 +61,48 @@ bool Refract(const Vec3& d, Vec3 n, double mu, Vec3& out) {
     return true;
 }
 
+// The path walk of a textured hit: maps the primitive-space point and normals up the hit
+// path (nodeTransforms[i] is node i's transform, null for identity) and applies the textures
+// of the nodes up to path[lastTextured] to `surface` and the shading normal, each in that
+// node's parent space. n and ng arrive in the primitive's space and leave in world space.
+// Kept apart from Evaluate: its context is large, and most hits have no textures.
+void ApplyPathTextures(const Ray& ray, const HitRecord& hit,
+                       const Transform* const* nodeTransforms, int lastTextured,
+                       const Ray& rayPrimitive, const Vec3& pPrimitive,
+                       const Vec3& geometricPrimitive, const SampleState& sample,
+                       Surface& surface, Vec3& n, Vec3& ng) {
+    TextureContext ctx;
+    ctx.primitive = hit.primitive;
+    ctx.primitiveHit = hit.prim;
+    ctx.pointPrimitive = pPrimitive;
+    ctx.facingNormalPrimitive =
+        Dot(rayPrimitive.dir, geometricPrimitive) > 0 ? -geometricPrimitive : geometricPrimitive;
+    ctx.rayPrimitive = rayPrimitive;
+    ctx.time = ray.time;
+    ctx.sampleNumber = sample.sampleNumber;
+    ctx.samplesPerSide = sample.samplesPerSide;
+    ctx.rng = sample.rng;
+    Vec3 p = pPrimitive;
+    for (int i = 0; i < hit.pathLength; ++i) {
+        const bool texturing = i <= lastTextured;
+        if (nodeTransforms[i]) {
+            const Transform& t = *nodeTransforms[i];
+            n = Normalize(t.ApplyNormal(n));
+            ng = Normalize(t.ApplyNormal(ng));
+            if (texturing) {
+                p = t.ApplyPoint(p);
+                ctx.nodeFromPrimitive = ctx.nodeFromPrimitive.Then(t);
+            }
+        }
+        if (!texturing || hit.path[i]->textures.empty()) continue;
+        ctx.point = p;
+        ctx.normal = n;
+        ctx.geometricNormal = ng;
+        for (const auto& texture : hit.path[i]->textures) texture->Apply(ctx, surface);
+        n = ctx.normal;
+    }
+}
+
 }  // namespace
 
 Tracer::Tracer(const Scene& scene) : scene_(scene), options_(scene.options) {}
@@ -130,37 +172,16 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
     sp.surface = UntexturedSurface(hit);
     sp.smooth = normals.smooth;
 
-    Vec3 p = pPrimitive, n = normals.shading, ng = normals.geometric;
-    TextureContext ctx;
+    Vec3 n = normals.shading, ng = normals.geometric;
     if (lastTextured >= 0) {
-        ctx.primitive = hit.primitive;
-        ctx.primitiveHit = hit.prim;
-        ctx.pointPrimitive = pPrimitive;
-        ctx.facingNormalPrimitive =
-            Dot(rayPrimitive.dir, normals.geometric) > 0 ? -normals.geometric : normals.geometric;
-        ctx.rayPrimitive = rayPrimitive;
-        ctx.time = ray.time;
-        ctx.sampleNumber = sample.sampleNumber;
-        ctx.samplesPerSide = sample.samplesPerSide;
-        ctx.rng = sample.rng;
-    }
-    for (int i = 0; i < hit.pathLength; ++i) {
-        const bool texturing = i <= lastTextured;
-        if (nodeTransforms[i]) {
-            const Transform& t = *nodeTransforms[i];
-            n = Normalize(t.ApplyNormal(n));
-            ng = Normalize(t.ApplyNormal(ng));
-            if (texturing) {
-                p = t.ApplyPoint(p);
-                ctx.nodeFromPrimitive = ctx.nodeFromPrimitive.Then(t);
-            }
+        ApplyPathTextures(ray, hit, nodeTransforms, lastTextured, rayPrimitive, pPrimitive,
+                          normals.geometric, sample, sp.surface, n, ng);
+    } else {
+        for (int i = 0; i < hit.pathLength; ++i) {
+            if (!nodeTransforms[i]) continue;
+            n = Normalize(nodeTransforms[i]->ApplyNormal(n));
+            ng = Normalize(nodeTransforms[i]->ApplyNormal(ng));
         }
-        if (!texturing || hit.path[i]->textures.empty()) continue;
-        ctx.point = p;
-        ctx.normal = n;
-        ctx.geometricNormal = ng;
-        for (const auto& texture : hit.path[i]->textures) texture->Apply(ctx, sp.surface);
-        n = ctx.normal;
     }
     sp.point = ray.At(hit.t());
 

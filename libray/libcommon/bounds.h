@@ -37,18 +37,24 @@ struct Bounds3 {
     }
 
     // Clips the parametric range [tMin, tMax] of `ray` to the box (slab test). Returns false
-    // when the clipped range is empty. Works with non-unit and axis-parallel directions
-    // (IEEE infinities from 1/0 give the right answer; NaN from 0·inf is rejected).
+    // when the clipped range is empty, leaving tMin and tMax untouched. Works with non-unit
+    // and axis-parallel directions (IEEE infinities from 1/0 give the right answer; NaN from
+    // 0·inf is rejected).
     bool ClipRay(const Ray& ray, double& tMin, double& tMax) const {
+        // The reciprocals come first, so the three divisions overlap instead of each
+        // waiting for the previous axis's test.
+        const Vec3 inv{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z};
+        double near = tMin, far = tMax;
         for (int axis = 0; axis < 3; ++axis) {
-            double invD = 1.0 / ray.dir[axis];
-            double t0 = (lo[axis] - ray.origin[axis]) * invD;
-            double t1 = (hi[axis] - ray.origin[axis]) * invD;
+            double t0 = (lo[axis] - ray.origin[axis]) * inv[axis];
+            double t1 = (hi[axis] - ray.origin[axis]) * inv[axis];
             if (t0 > t1) std::swap(t0, t1);
-            if (t0 > tMin) tMin = t0;  // comparisons written so NaN leaves the range alone
-            if (t1 < tMax) tMax = t1;
-            if (tMin > tMax) return false;
+            if (t0 > near) near = t0;  // comparisons written so NaN leaves the range alone
+            if (t1 < far) far = t1;
+            if (near > far) return false;
         }
+        tMin = near;
+        tMax = far;
         return true;
     }
 };

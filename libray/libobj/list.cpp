@@ -15,9 +15,11 @@ bool ListAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
                    return bounded_[i]->Intersect(ray, tMin, tMax, hit);
                }) || found;
     }
-    // The box test uses tMax as shrunk by the unbounded children.
+    // The box test uses tMax as shrunk by the unbounded children. Without them it would
+    // repeat the owning node's pre-test of this same box (Object::Intersect), so it is
+    // skipped; skipping it never changes the nearest hit, only how many children are tried.
     double t0 = tMin, t1 = tMax;
-    if (!bounds_.ClipRay(ray, t0, t1)) return found;
+    if (!unbounded_.empty() && !bounds_.ClipRay(ray, t0, t1)) return found;
     for (const Object* child : bounded_)
         if (child->Intersect(ray, tMin, tMax, hit)) found = true;
     return found;

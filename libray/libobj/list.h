@@ -15,7 +15,8 @@ class ListAggregate final : public Aggregate {
     const char* TypeName() const override { return "list"; }
 
     // Unbounded children are tested first; the bounded ones only when the remaining ray
-    // segment (tMin, tMax) meets the union box of the bounded children.
+    // segment (tMin, tMax) meets the union box of the bounded children. Without unbounded
+    // children that box is the owning node's, which Object::Intersect has already tested.
     bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const override;
 
     // The box of the bounded children (object space) and whether there are any; unbounded

@@ -29,7 +29,8 @@ std::shared_ptr<Object> Object::MakeInstance(std::shared_ptr<Object> of) {
     return o;
 }
 
-bool Object::Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const {
+bool Object::IntersectGeneral(const Ray& rayParent, double tMin, double& tMax,
+                              HitRecord& hit) const {
     Ray rayObject;
     if (!parentFromObject.IsIdentity())
         rayObject = parentFromObject.IsAnimated()
@@ -38,21 +39,9 @@ bool Object::Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecor
     const Ray& ray = parentFromObject.IsIdentity() ? rayParent : rayObject;
     bool found = false;
     switch (kind_) {
-        case Kind::Primitive: {
-            const IntersectionCounters& counters = *counters_;
-            Count(counters.tests);
-            PrimitiveHit ph;
-            if (primitive_->Intersect(ray, tMin, tMax, ph)) {
-                Count(counters.hits);
-                tMax = ph.t;
-                hit.prim = ph;
-                hit.primitive = primitive_.get();
-                hit.pathLength = 0;
-                hit.enterOverride = -1;
-                found = true;
-            }
-            break;
-        }
+        case Kind::Primitive:
+            // IntersectPrimitive adds this node to the path.
+            return IntersectPrimitive(ray, tMin, tMax, hit);
         case Kind::Aggregate:
         case Kind::Instance: {
             if (bounded_) {

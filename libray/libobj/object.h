@@ -41,7 +41,13 @@ class Object {
 
     // Nearest hit with tMin < t < tMax for a ray given in the PARENT's space. On success
     // shrinks tMax, fills `hit`, appends this node to hit.path and returns true.
-    bool Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const;
+    // Primitives without transforms (most leaves) take an inline path, so aggregates call
+    // the primitive's test directly.
+    bool Intersect(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const {
+        if (kind_ == Kind::Primitive && parentFromObject.IsIdentity())
+            return IntersectPrimitive(rayParent, tMin, tMax, hit);
+        return IntersectGeneral(rayParent, tMin, tMax, hit);
+    }
 
     // Bounds in the parent's space for the current frame (union over the shutter interval
     // when animated) and whether the node is bounded at all (planes are not).
@@ -62,6 +68,22 @@ class Object {
 
   private:
     explicit Object(Kind k) : kind_(k) {}
+
+    // Intersect for a primitive node, with the ray already in the node's object space.
+    bool IntersectPrimitive(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const {
+        Count(counters_->tests);
+        PrimitiveHit ph;
+        if (!primitive_->Intersect(ray, tMin, tMax, ph)) return false;
+        Count(counters_->hits);
+        tMax = ph.t;
+        hit.prim = ph;
+        hit.primitive = primitive_.get();
+        hit.path[0] = this;
+        hit.pathLength = 1;
+        hit.enterOverride = -1;
+        return true;
+    }
+    bool IntersectGeneral(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const;
 
     Kind kind_;
     std::shared_ptr<Primitive> primitive_;
