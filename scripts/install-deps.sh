@@ -3,7 +3,7 @@
 # available). Safe to run again: packages already present are left alone.
 set -euo pipefail
 
-packages=(build-essential cmake cpp libpng-dev zlib1g-dev libgtest-dev googletest)
+packages=(build-essential cmake cpp python3 libpng-dev zlib1g-dev libgtest-dev googletest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
