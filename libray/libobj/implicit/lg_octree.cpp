@@ -36,6 +36,8 @@ struct OctreeCounters {
     CounterId floorRoots = RegisterCounter("Implicit minimum-width roots");
     CounterId unresolved = RegisterCounter("Implicit unresolved intervals");
     CounterId rejectedRoots = RegisterCounter("Implicit roots rejected by predominance");
+    CounterId excludedSegments =
+        RegisterCounter("Implicit single-root segments excluded by predominance");
 };
 
 const OctreeCounters& Counters() {
@@ -118,6 +120,10 @@ class RaySearch {
     }
 
     bool Ridders(double a, double ga, double b, double gb) {
+        if (tree_.OwnExcluded(Bounds3(ray_.At(a), ray_.At(b)))) {
+            Count(Counters().excludedSegments);
+            return false;
+        }
         Count(Counters().ridders);
         auto f = [this](double t) { return G(t); };
         std::optional<RootResult> r = RiddersRoot(f, a, ga, b, gb, tolT_, s_.maxRiddersIterations);
@@ -347,6 +353,20 @@ bool LGOctree::OwnMayPredominate(const std::vector<TermValueRange>& ranges) cons
         if (j != ownTerm_ && ranges[j].lo > ownHi) return false;
     }
     return true;
+}
+
+bool LGOctree::OwnExcluded(const Bounds3& box) const {
+    if (ownTerm_ < 0 || !settings_.usePredominancePruning) return false;
+    double ownLo, ownHi;
+    field_.TermRange(ownTerm_, box, ownLo, ownHi);
+    const double limit = ownHi + kExclusionMargin * std::abs(ownHi);
+    for (int j = 0; j < field_.Size(); ++j) {
+        if (j == ownTerm_) continue;
+        double lo, hi;
+        field_.TermRange(j, box, lo, hi);
+        if (lo - kExclusionMargin * std::abs(lo) > limit) return true;
+    }
+    return false;
 }
 
 LGOctree::Ref LGOctree::MakeLeaf(double L, double G) {

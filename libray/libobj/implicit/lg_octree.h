@@ -167,6 +167,16 @@ class LGOctree {
     // cell; Empty: g < 0 in the cell, or (patch rule) no predominant point in it.
     CellClass Classify(const Vec3& p) const;
 
+    // True when the tree serves a patch (ownTerm >= 0, patch rule on) and some other term's
+    // smallest value over `box` exceeds the own term's largest by a relative margin of
+    // kExclusionMargin: no point of the box can pass a predominance test. Ridders' method
+    // is skipped on a ray segment whose box is excluded: every point the solver could
+    // return lies in that box (the ray's coordinates are monotone in t under rounding),
+    // where `accept` would reject it, so the result is the same without the solve. The
+    // margin covers the rounding of TermRange against TermValue (a few ulps).
+    bool OwnExcluded(const Bounds3& box) const;
+    static constexpr double kExclusionMargin = 1e-9;
+
     // The first t in (tMin, tMax) where g changes sign along the ray (to the tolerance) and
     // `accept(t)` holds; rejected roots are skipped and the search continues past them.
     std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax,

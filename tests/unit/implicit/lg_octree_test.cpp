@@ -242,6 +242,32 @@ TEST(LGOctree, LeafBoxHoldsEveryLeafCell) {
     EXPECT_GT(missingRays, 1000);
 }
 
+// OwnExcluded(box) holds only where no point of the box predominates (dense samples in
+// random small boxes), and it does fire.
+TEST(LGOctree, ExcludedBoxesHoldNoPredominantPoint) {
+    Rng rng(11);
+    std::vector<FieldTerm> terms;
+    for (int i = 0; i < 8; ++i) {
+        terms.push_back({"p", PointSkeleton{RandomPoint(rng, -0.7, 0.7)},
+                         i % 2 ? Kernel::Blob(1, 0.9) : Kernel::GascuelQuadratic(0.35, 2.4, 0.9),
+                         1});
+    }
+    int excluded = 0;
+    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+        LGOctree tree = BuildPatchOctree(patch, 0.6, OctreeSettings{});
+        for (int i = 0; i < 400; ++i) {
+            Vec3 a = testing::RandomInBox(rng, tree.Box());
+            Bounds3 box(a, a + RandomPoint(rng, -0.2, 0.2));
+            if (!tree.OwnExcluded(box)) continue;
+            ++excluded;
+            for (int k = 0; k < 200; ++k) {
+                ASSERT_FALSE(patch.Predominates(testing::RandomInBox(rng, box)));
+            }
+        }
+    }
+    EXPECT_GT(excluded, 200);
+}
+
 // Patch trees: a cell is Empty only where g < 0 or the own term cannot predominate.
 TEST(LGOctree, PatchRuleCellsHoldNoAcceptableRoot) {
     Rng rng(5);
