@@ -55,8 +55,11 @@ Vec3 Field::Gradient(const Vec3& p) const {
     for (int i = 0; i < n; ++i) {
         if (!MayReach(i, p)) continue;
         const FieldTerm& t = terms_[i];
+        // Points without the variant dispatch, as in Value (same arithmetic).
+        const auto* point = std::get_if<PointSkeleton>(&t.skeleton);
         Vec3 closest;
-        double d = SkeletonDistance(t.skeleton, p, closest);
+        const double d = point ? Length(p - (closest = point->center))
+                               : SkeletonDistance(t.skeleton, p, closest);
         if (d <= 0 || d >= t.kernel.Radius()) continue;
         g += (p - closest) * (t.weight * t.kernel.Derivative(d) / d);
     }

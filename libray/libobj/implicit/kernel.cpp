@@ -10,8 +10,6 @@ namespace rs {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Pieces of a kernel: the inner part, the outer part (Gascuel only) and the zero tail.
-constexpr int kInner = 0, kOuter = 1, kZero = 2;
 }  // namespace
 
 Kernel Kernel::GascuelLinear(double thickness, double stiffness, double radius) {
@@ -64,50 +62,6 @@ KernelStatus Kernel::Validate(const std::string& skeletonName) const {
     return {};
 }
 
-int Kernel::PieceOf(double r) const {
-    if (r >= radius_) return kZero;
-    if (kind_ == KernelKind::Blob || r <= thickness_) return kInner;
-    return kOuter;
-}
-
-double Kernel::PieceValue(int piece, double r) const {
-    double e = thickness_, k = stiffness_;
-    switch (piece) {
-        case kInner:
-            if (kind_ == KernelKind::Blob) {
-                double q = 1 - r * r / (radius_ * radius_);
-                return strength_ * q * q;
-            }
-            if (kind_ == KernelKind::GascuelLinear) return 1 - k * (r - e);
-            return 1 + 0.5 * k * e - 0.5 * k * r * r / e;
-        case kOuter: {
-            double l = radius_ - e, s = (r - e) / l, m = k * l;
-            return (2 * s * s * s - 3 * s * s + 1) - m * (s * s * s - 2 * s * s + s);
-        }
-        default:
-            return 0;
-    }
-}
-
-double Kernel::PieceDerivative(int piece, double r) const {
-    double e = thickness_, k = stiffness_;
-    switch (piece) {
-        case kInner:
-            if (kind_ == KernelKind::Blob) {
-                double r2 = radius_ * radius_;
-                return -4 * strength_ * r * (1 - r * r / r2) / r2;
-            }
-            if (kind_ == KernelKind::GascuelLinear) return -k;
-            return -k * r / e;
-        case kOuter: {
-            double l = radius_ - e, s = (r - e) / l, m = k * l;
-            return (6 * s * s - 6 * s - m * (3 * s * s - 4 * s + 1)) / l;
-        }
-        default:
-            return 0;
-    }
-}
-
 double Kernel::PieceSecond(int piece, double r) const {
     double e = thickness_, k = stiffness_;
     switch (piece) {
@@ -127,8 +81,6 @@ double Kernel::PieceSecond(int piece, double r) const {
     }
 }
 
-double Kernel::Value(double r) const { return PieceValue(PieceOf(r), r); }
-double Kernel::Derivative(double r) const { return PieceDerivative(PieceOf(r), r); }
 double Kernel::SecondDerivative(double r) const { return PieceSecond(PieceOf(r), r); }
 
 // Candidate-point method: on each piece met by [rmin, rmax], |f'| is maximal at an end of

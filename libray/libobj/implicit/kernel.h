@@ -58,8 +58,9 @@ class Kernel {
     // Checks the parameter conditions (0 < e < R, k > 0, k(R − e) <= 3; blob s > 0, R > 0).
     KernelStatus Validate(const std::string& skeletonName) const;
 
-    double Value(double r) const;
-    double Derivative(double r) const;
+    // Inline: the field sums call them once per term and evaluation.
+    double Value(double r) const { return PieceValue(PieceOf(r), r); }
+    double Derivative(double r) const { return PieceDerivative(PieceOf(r), r); }
     // f'' with the value of the piece that contains r (pieces: [0, e], (e, R), [R, ∞)).
     double SecondDerivative(double r) const;
 
@@ -67,6 +68,8 @@ class Kernel {
     KernelBounds Bounds(double rmin, double rmax) const;
 
   private:
+    // Pieces of a kernel: the inner part, the outer part (Gascuel only) and the zero tail.
+    static constexpr int kInner = 0, kOuter = 1, kZero = 2;
     // One piece of the kernel on [lo, hi].
     double PieceValue(int piece, double r) const;
     double PieceDerivative(int piece, double r) const;
@@ -76,5 +79,49 @@ class Kernel {
     KernelKind kind_ = KernelKind::Blob;
     double thickness_ = 0, stiffness_ = 0, radius_ = 1, strength_ = 1;
 };
+
+inline int Kernel::PieceOf(double r) const {
+    if (r >= radius_) return kZero;
+    if (kind_ == KernelKind::Blob || r <= thickness_) return kInner;
+    return kOuter;
+}
+
+inline double Kernel::PieceValue(int piece, double r) const {
+    double e = thickness_, k = stiffness_;
+    switch (piece) {
+        case kInner:
+            if (kind_ == KernelKind::Blob) {
+                double q = 1 - r * r / (radius_ * radius_);
+                return strength_ * q * q;
+            }
+            if (kind_ == KernelKind::GascuelLinear) return 1 - k * (r - e);
+            return 1 + 0.5 * k * e - 0.5 * k * r * r / e;
+        case kOuter: {
+            double l = radius_ - e, s = (r - e) / l, m = k * l;
+            return (2 * s * s * s - 3 * s * s + 1) - m * (s * s * s - 2 * s * s + s);
+        }
+        default:
+            return 0;
+    }
+}
+
+inline double Kernel::PieceDerivative(int piece, double r) const {
+    double e = thickness_, k = stiffness_;
+    switch (piece) {
+        case kInner:
+            if (kind_ == KernelKind::Blob) {
+                double r2 = radius_ * radius_;
+                return -4 * strength_ * r * (1 - r * r / r2) / r2;
+            }
+            if (kind_ == KernelKind::GascuelLinear) return -k;
+            return -k * r / e;
+        case kOuter: {
+            double l = radius_ - e, s = (r - e) / l, m = k * l;
+            return (6 * s * s - 6 * s - m * (3 * s * s - 4 * s + 1)) / l;
+        }
+        default:
+            return 0;
+    }
+}
 
 }  // namespace rs

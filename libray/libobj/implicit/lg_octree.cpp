@@ -36,6 +36,8 @@ struct OctreeCounters {
     CounterId floorRoots = RegisterCounter("Implicit minimum-width roots");
     CounterId unresolved = RegisterCounter("Implicit unresolved intervals");
     CounterId rejectedRoots = RegisterCounter("Implicit roots rejected by predominance");
+    CounterId excludedSegments =
+        RegisterCounter("Implicit single-root segments excluded by predominance");
 };
 
 const OctreeCounters& Counters() {
@@ -118,6 +120,10 @@ class RaySearch {
     }
 
     bool Ridders(double a, double ga, double b, double gb) {
+        if (tree_.OwnExcluded(Bounds3(ray_.At(a), ray_.At(b)))) {
+            Count(Counters().excludedSegments);
+            return false;
+        }
         Count(Counters().ridders);
         auto f = [this](double t) { return G(t); };
         std::optional<RootResult> r = RiddersRoot(f, a, ga, b, gb, tolT_, s_.maxRiddersIterations);
@@ -321,6 +327,11 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     internals_.assign(internalScratch.begin(), internalScratch.end());
     leaves_.assign(leafScratch.begin(), leafScratch.end());
     std::vector<TermValueRange>().swap(termRanges_);
+    ExtendLeafBox(root_, box_);
+    if (!leafBox_.IsEmpty()) {
+        const Vec3 extent = box_.Extent();
+        leafBox_ = leafBox_.Padded(kLeafBoxPadding * std::max({extent.x, extent.y, extent.z}));
+    }
     if (degraded_) {
         Report(Severity::Warn, {},
                "implicit octree: memory budget of %zu bytes reached; some cells stop above "
@@ -344,9 +355,31 @@ bool LGOctree::OwnMayPredominate(const std::vector<TermValueRange>& ranges) cons
     return true;
 }
 
+bool LGOctree::OwnExcluded(const Bounds3& box) const {
+    if (ownTerm_ < 0 || !settings_.usePredominancePruning) return false;
+    double ownLo, ownHi;
+    field_.TermRange(ownTerm_, box, ownLo, ownHi);
+    const double limit = ownHi + kExclusionMargin * std::abs(ownHi);
+    for (int j = 0; j < field_.Size(); ++j) {
+        if (j == ownTerm_) continue;
+        double lo, hi;
+        field_.TermRange(j, box, lo, hi);
+        if (lo - kExclusionMargin * std::abs(lo) > limit) return true;
+    }
+    return false;
+}
+
 LGOctree::Ref LGOctree::MakeLeaf(double L, double G) {
     leaves_.push_back({L, G});
     return kFirstLeafRef - static_cast<Ref>(leaves_.size() - 1);
+}
+
+void LGOctree::ExtendLeafBox(Ref ref, const Bounds3& box) {
+    if (ref <= kFirstLeafRef) {
+        leafBox_.Extend(box);
+    } else if (ref >= 0) {
+        for (int i = 0; i < 8; ++i) ExtendLeafBox(internals_[ref].child[i], ChildBox(box, i));
+    }
 }
 
 double LGOctree::LatticeValue(const Vec3& p, LatticePoint q) {
@@ -526,10 +559,12 @@ CellClass LGOctree::Classify(const Vec3& p) const {
 std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tMax,
                                           const std::function<bool(double)>& accept) const {
     if (LengthSquared(ray.dir) == 0 || !(tMax > tMin)) return std::nullopt;
-    RaySearch search(*this, ray, tMin, tMax, accept);
     if (box_.IsEmpty()) return std::nullopt;
     double t0 = tMin, t1 = tMax;
     if (!box_.ClipRay(ray, t0, t1)) return std::nullopt;
+    double l0 = t0, l1 = t1;
+    if (leafBox_.IsEmpty() || !leafBox_.ClipRay(ray, l0, l1)) return std::nullopt;
+    RaySearch search(*this, ray, tMin, tMax, accept);
     auto leaf = [&search](const LeafSpan& span) { return search.Leaf(span); };
     Visit(root_, box_, ray, t0, t1, leaf);
     return search.result;

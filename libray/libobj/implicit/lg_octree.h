@@ -153,6 +153,9 @@ class LGOctree {
     const Field& GetField() const { return field_; }
     double Threshold() const { return threshold_; }
     const Bounds3& Box() const { return box_; }
+    // A box containing every leaf cell (empty when the tree has no leaf): FirstRoot returns
+    // nothing at once for rays that miss it.
+    const Bounds3& LeafBox() const { return leafBox_; }
     const OctreeSettings& Settings() const { return settings_; }
 
     // Calls `visit` for every leaf the ray meets within [tMin, tMax], in ray order, with
@@ -163,6 +166,16 @@ class LGOctree {
     // The class of the cell containing p (Empty outside the root box). Full: g > 0 in the
     // cell; Empty: g < 0 in the cell, or (patch rule) no predominant point in it.
     CellClass Classify(const Vec3& p) const;
+
+    // True when the tree serves a patch (ownTerm >= 0, patch rule on) and some other term's
+    // smallest value over `box` exceeds the own term's largest by a relative margin of
+    // kExclusionMargin: no point of the box can pass a predominance test. Ridders' method
+    // is skipped on a ray segment whose box is excluded: every point the solver could
+    // return lies in that box (the ray's coordinates are monotone in t under rounding),
+    // where `accept` would reject it, so the result is the same without the solve. The
+    // margin covers the rounding of TermRange against TermValue (a few ulps).
+    bool OwnExcluded(const Bounds3& box) const;
+    static constexpr double kExclusionMargin = 1e-9;
 
     // The first t in (tMin, tMax) where g changes sign along the ray (to the tolerance) and
     // `accept(t)` holds; rejected roots are skipped and the search continues past them.
@@ -199,6 +212,8 @@ class LGOctree {
     double LatticeValue(const Vec3& p, LatticePoint q);
     bool OwnMayPredominate(const std::vector<TermValueRange>& ranges) const;
     Ref MakeLeaf(double L, double G);
+    // Extends leafBox_ by the cells of the leaves below `ref` (cell `box`).
+    void ExtendLeafBox(Ref ref, const Bounds3& box);
     // The leaves below `ref` (cell `box`) met by the ray within [t0, t1], in ray order.
     // Visitor: bool(const LeafSpan&), true to stop. Defined and used in the .cpp only.
     template <class Visitor>
@@ -209,6 +224,13 @@ class LGOctree {
     double threshold_;
     int ownTerm_;
     Bounds3 box_;
+    // The union of the leaf cells, padded by kLeafBoxPadding of the root box's longest edge
+    // (empty without leaves). Only leaves hold roots, and the search visits a leaf only for
+    // a ray piece whose midpoint lies in that cell up to the rounding of the ray's
+    // parameters (relative 1e-16, far below the padding), so a ray missing this box meets
+    // no leaf: FirstRoot stops there, with the result a full walk would give.
+    Bounds3 leafBox_;
+    static constexpr double kLeafBoxPadding = 1e-6;
     OctreeSettings settings_;
     std::vector<Internal> internals_;
     std::vector<Leaf> leaves_;

@@ -207,6 +207,67 @@ TEST(LGOctree, CellClassesAgreeWithSampling) {
     }
 }
 
+// Every point classified as a leaf lies in LeafBox(), and rays that miss that box find no
+// root (patch trees, where the patch rule makes it much smaller than the patch box).
+TEST(LGOctree, LeafBoxHoldsEveryLeafCell) {
+    Rng rng(7);
+    std::vector<FieldTerm> terms;
+    for (int i = 0; i < 8; ++i) {
+        terms.push_back({"p", PointSkeleton{RandomPoint(rng, -0.7, 0.7)}, Kernel::Blob(1, 0.9),
+                         1});
+    }
+    int leafPoints = 0, missingRays = 0;
+    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+        LGOctree tree = BuildPatchOctree(patch, 0.6, OctreeSettings{});
+        const Bounds3& leafBox = tree.LeafBox();
+        for (int i = 0; i < 20000; ++i) {
+            Vec3 p = testing::RandomInBox(rng, tree.Box());
+            if (tree.Classify(p) != CellClass::Leaf) continue;
+            ++leafPoints;
+            ASSERT_TRUE(leafBox.Contains(p));
+        }
+        for (int i = 0; i < 2000; ++i) {
+            Ray ray{RandomPoint(rng, -3, 3), RandomUnit(rng)};
+            double t0 = 0, t1 = 1e9;
+            if (!leafBox.IsEmpty() && leafBox.ClipRay(ray, t0, t1)) continue;
+            ++missingRays;
+            double b0 = 0, b1 = 1e9;
+            if (!tree.Box().ClipRay(ray, b0, b1)) continue;
+            bool anyLeaf = false;
+            tree.Traverse(ray, 0, 1e9, [&](const LeafSpan&) { return anyLeaf = true; });
+            ASSERT_FALSE(anyLeaf);
+        }
+    }
+    EXPECT_GT(leafPoints, 1000);
+    EXPECT_GT(missingRays, 1000);
+}
+
+// OwnExcluded(box) holds only where no point of the box predominates (dense samples in
+// random small boxes), and it does fire.
+TEST(LGOctree, ExcludedBoxesHoldNoPredominantPoint) {
+    Rng rng(11);
+    std::vector<FieldTerm> terms;
+    for (int i = 0; i < 8; ++i) {
+        terms.push_back({"p", PointSkeleton{RandomPoint(rng, -0.7, 0.7)},
+                         i % 2 ? Kernel::Blob(1, 0.9) : Kernel::GascuelQuadratic(0.35, 2.4, 0.9),
+                         1});
+    }
+    int excluded = 0;
+    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+        LGOctree tree = BuildPatchOctree(patch, 0.6, OctreeSettings{});
+        for (int i = 0; i < 400; ++i) {
+            Vec3 a = testing::RandomInBox(rng, tree.Box());
+            Bounds3 box(a, a + RandomPoint(rng, -0.2, 0.2));
+            if (!tree.OwnExcluded(box)) continue;
+            ++excluded;
+            for (int k = 0; k < 200; ++k) {
+                ASSERT_FALSE(patch.Predominates(testing::RandomInBox(rng, box)));
+            }
+        }
+    }
+    EXPECT_GT(excluded, 200);
+}
+
 // Patch trees: a cell is Empty only where g < 0 or the own term cannot predominate.
 TEST(LGOctree, PatchRuleCellsHoldNoAcceptableRoot) {
     Rng rng(5);
