@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace rs {
 
@@ -12,18 +13,45 @@ constexpr double kUnitRoundoff = 1.1102230246251565e-16;  // u = 2⁻⁵³
 constexpr double kRootRelTolerance = 8 * kUnitRoundoff;
 constexpr int kMaxIterations = 100;
 
+// The evaluation routines below take the degree N as a template parameter so that their
+// loops unroll; each performs exactly the operations, in exactly the order, of the plain
+// loop over i = N−1…0, so every result is bit-identical to a run-time-degree loop.
+template <int N>
+using Degree = std::integral_constant<int, N>;
+
+// Calls body(Degree<degree>{}) for 0 ≤ degree ≤ 4 (callers guarantee that range).
+template <typename Body>
+decltype(auto) WithDegree(int degree, Body&& body) {
+    switch (degree) {
+        case 0: return body(Degree<0>{});
+        case 1: return body(Degree<1>{});
+        case 2: return body(Degree<2>{});
+        case 3: return body(Degree<3>{});
+        default: return body(Degree<4>{});
+    }
+}
+
+template <int N>
+double Horner(const double* c, double x) {
+    double f = c[N];
+    for (int i = N - 1; i >= 0; --i) f = f * x + c[i];
+    return f;
+}
+
 // Σ|c_i|·|x|^i: the scale of the terms summed when evaluating at x.
-double EvaluationScale(const double* c, int degree, double x) {
-    double ax = std::fabs(x), s = std::fabs(c[degree]);
-    for (int i = degree - 1; i >= 0; --i) s = s * ax + std::fabs(c[i]);
+template <int N>
+double EvaluationScale(const double* c, double x) {
+    double ax = std::fabs(x), s = std::fabs(c[N]);
+    for (int i = N - 1; i >= 0; --i) s = s * ax + std::fabs(c[i]);
     return s;
 }
 
 // Value and derivative by Horner's rule.
-void EvaluateWithDerivative(const double* c, int degree, double x, double& f, double& df) {
-    f = c[degree];
+template <int N>
+void EvaluateWithDerivative(const double* c, double x, double& f, double& df) {
+    f = c[N];
     df = 0;
-    for (int i = degree - 1; i >= 0; --i) {
+    for (int i = N - 1; i >= 0; --i) {
         df = df * x + f;
         f = f * x + c[i];
     }
@@ -54,9 +82,16 @@ int QuadraticRoots(double c2, double c1, double c0, double roots[2]) {
 
 // The root of a polynomial monotonic on [left, right] whose values at the ends, fLeft and
 // fRight, have strictly opposite signs: Newton's method kept inside the bracket, bisecting
-// whenever Newton would leave it or is not converging fast enough.
-double RefineRoot(const double* c, int degree, double left, double right, double fLeft,
-                  double fRight) {
+// whenever Newton would leave it or is not converging fast enough. It stops early at an x
+// where |f| is within Horner's rounding-error bound γ_2N·Σ|c_i||x|^i (Higham, Accuracy and
+// Stability, §5.1; γ_2N = 2Nu/(1 − 2Nu) < (2N + 1)u): there the computed sign of f, the
+// only thing the bracket updates use, carries no information, so further iterations could
+// not tell the root's side any better than x does; this loses no root (x lies inside the
+// bracket) and no precision the evaluation can resolve. Without this stop, the dozens of
+// bisections needed to narrow the bracket to 4 ulp through such a noise band dominated the
+// cost at grazing rays.
+template <int N>
+double RefineRoot(const double* c, double left, double right, double fLeft, double fRight) {
     const bool leftNegative = fLeft < 0;
     // A false-position first guess is usually close for the nearly linear pieces rays give.
     double x = left - fLeft * (right - left) / (fRight - fLeft);
@@ -64,8 +99,8 @@ double RefineRoot(const double* c, int degree, double left, double right, double
     double stepBeforeLast = right - left, lastStep = stepBeforeLast;
     for (int i = 0; i < kMaxIterations; ++i) {
         double f, df;
-        EvaluateWithDerivative(c, degree, x, f, df);
-        if (f == 0) return x;
+        EvaluateWithDerivative<N>(c, x, f, df);
+        if (std::fabs(f) <= (2 * N + 1) * kUnitRoundoff * EvaluationScale<N>(c, x)) return x;
         if ((f < 0) == leftNegative) {
             left = x;
         } else {
@@ -89,9 +124,7 @@ double RefineRoot(const double* c, int degree, double left, double right, double
 }  // namespace
 
 double EvaluatePolynomial(const double* c, int degree, double x) {
-    double f = c[degree];
-    for (int i = degree - 1; i >= 0; --i) f = f * x + c[i];
-    return f;
+    return WithDegree(degree, [&](auto n) { return Horner<n>(c, x); });
 }
 
 AscendingRoots::AscendingRoots(const double* coeffs, int degree, double lo, double hi) {
@@ -117,7 +150,10 @@ AscendingRoots::AscendingRoots(const double* coeffs, int degree, double lo, doub
     for (int k = 0; k < nLevels_; ++k) Start(levels_[k], lo, hi);
 }
 
-bool MayHaveRoot(const double* c, int degree, double lo, double hi) {
+namespace {
+
+template <int N>
+bool MayHaveRootOfDegree(const double* c, double lo, double hi) {
     // Taylor-shift to s = x − lo and scale to u = s / (hi − lo) ∈ [0, 1]: a_i = c⁽ⁱ⁾(lo)/i!·wⁱ.
     // Then b_k = Σ_{i≤k} C(k,i)/C(n,i)·a_i are the Bernstein coefficients, and p lies in
     // their convex hull on [lo, hi]. The margin is 10⁻⁹ of S = Σ|c_i|·max(|lo|,|hi|)ⁱ, which
@@ -125,15 +161,14 @@ bool MayHaveRoot(const double* c, int degree, double lo, double hi) {
     // operations here (a small multiple of u·S), and far above the solver's own tolerance
     // kZeroTolerance·S for "p(x) is zero", so the answer "no root" never hides a root (or a
     // tangency within rounding error) that the solver would report.
-    if (degree < 1 || degree > 4) return true;
     const double w = hi - lo;
-    double a[5];
-    for (int i = 0; i <= degree; ++i) a[i] = c[i];
+    double a[N + 1];
+    for (int i = 0; i <= N; ++i) a[i] = c[i];
     // Repeated synthetic division by (x − lo) gives the coefficients of p(lo + s).
-    for (int i = 0; i < degree; ++i)
-        for (int j = degree - 1; j >= i; --j) a[j] += lo * a[j + 1];
+    for (int i = 0; i < N; ++i)
+        for (int j = N - 1; j >= i; --j) a[j] += lo * a[j + 1];
     double scale = 1;
-    for (int i = 1; i <= degree; ++i) {
+    for (int i = 1; i <= N; ++i) {
         scale *= w;
         a[i] *= scale;
     }
@@ -145,15 +180,22 @@ bool MayHaveRoot(const double* c, int degree, double lo, double hi) {
         {{1}, {1, 1.0 / 3}, {1, 2.0 / 3, 1.0 / 3}, {1, 1, 1, 1}},
         {{1}, {1, 0.25}, {1, 0.5, 1.0 / 6}, {1, 0.75, 0.5, 0.25}, {1, 1, 1, 1, 1}},
     };
-    const double margin = 1e-9 * EvaluationScale(c, degree, std::max(std::fabs(lo), std::fabs(hi)));
+    const double margin = 1e-9 * EvaluationScale<N>(c, std::max(std::fabs(lo), std::fabs(hi)));
     bool allAbove = true, allBelow = true;
-    for (int k = 0; k <= degree; ++k) {
+    for (int k = 0; k <= N; ++k) {
         double b = 0;
-        for (int i = 0; i <= k; ++i) b += kRatio[degree][k][i] * a[i];
+        for (int i = 0; i <= k; ++i) b += kRatio[N][k][i] * a[i];
         allAbove = allAbove && b > margin;
         allBelow = allBelow && b < -margin;
     }
     return !(allAbove || allBelow) || !std::isfinite(margin);
+}
+
+}  // namespace
+
+bool MayHaveRoot(const double* c, int degree, double lo, double hi) {
+    if (degree < 1 || degree > 4) return true;
+    return WithDegree(degree, [&](auto n) { return MayHaveRootOfDegree<n>(c, lo, hi); });
 }
 
 void AscendingRoots::Start(Level& level, double lo, double hi) {
@@ -180,8 +222,10 @@ void AscendingRoots::Start(Level& level, double lo, double hi) {
 }
 
 double AscendingRoots::ZeroedValue(const Level& level, double x) {
-    const double f = EvaluatePolynomial(level.c, level.degree, x);
-    return std::fabs(f) <= kZeroTolerance * EvaluationScale(level.c, level.degree, x) ? 0 : f;
+    return WithDegree(level.degree, [&](auto n) {
+        const double f = Horner<n>(level.c, x);
+        return std::fabs(f) <= kZeroTolerance * EvaluationScale<n>(level.c, x) ? 0 : f;
+    });
 }
 
 bool AscendingRoots::Next(int k, double& root) {
@@ -219,7 +263,9 @@ bool AscendingRoots::Next(int k, double& root) {
         level.v0 = v1;
         level.pendingZero = v1 == 0 && x1 > x0;
         if (signChange) {
-            root = RefineRoot(level.c, level.degree, x0, x1, v0, v1);
+            // Levels walked here have degree 3 or 4 (lower ones use the closed forms).
+            root = level.degree == 3 ? RefineRoot<3>(level.c, x0, x1, v0, v1)
+                                     : RefineRoot<4>(level.c, x0, x1, v0, v1);
             return true;
         }
     }

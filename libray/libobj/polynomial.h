@@ -17,8 +17,9 @@
 //  * "p(x) is zero" means |p(x)| ≤ kZeroTolerance · Σ|c_i|·|x|^i, a few times the
 //    rounding-error bound 2·n·u of Horner's rule for degree n ≤ 4 (u = 2⁻⁵³).
 //  * Roots are refined until the bracket is narrower than 4 ulp of the root (relative
-//    accuracy ~1e-15), or |p| vanishes, or 100 iterations (each halves the bracket at
-//    worst) have been spent.
+//    accuracy ~1e-15), or |p| falls within Horner's rounding-error bound
+//    (2n + 1)·u·Σ|c_i|·|x|^i (where p's computed sign, and so any further refinement, is
+//    noise), or 100 iterations (each halves the bracket at worst) have been spent.
 #pragma once
 
 namespace rs {

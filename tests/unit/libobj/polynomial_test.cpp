@@ -169,6 +169,28 @@ TEST(Polynomial, RandomQuarticsRecoverTheirRoots) {
     }
 }
 
+TEST(Polynomial, QuarticSimpleRootsKeepFullPrecision) {
+    // Dyadic roots give exact coefficients; well-conditioned roots come out to a few ulp,
+    // the rounding-error stop of the refinement cutting nothing short here.
+    auto c = FromRoots({-1.5, 0.25, 0.75, 3});
+    ExpectRoots(Quartic(c[0], c[1], c[2], c[3], c[4]), {-1.5, 0.25, 0.75, 3}, 4e-15);
+}
+
+TEST(Polynomial, QuarticNearlyTangentRootsWithinTheRoundingBand) {
+    // (x − 1)(x − 1 − 10⁻⁵)(x + 2)(x + 3): the close pair is ill-conditioned (|p′| ≈ 1.2·10⁻⁴
+    // against Σ|c_i| ≈ 27), so its roots are only determined to ~(2n + 1)u·27/1.2·10⁻⁴
+    // ≈ 2·10⁻¹⁰; both are still found, distinct and in order, within that band.
+    const double d = 1e-5;
+    auto c = FromRoots({-3, -2, 1, 1 + d});
+    auto r = Quartic(c[0], c[1], c[2], c[3], c[4]);
+    ASSERT_EQ(r.size(), 4u);
+    EXPECT_NEAR(r[0], -3, 1e-13);
+    EXPECT_NEAR(r[1], -2, 1e-13);
+    EXPECT_NEAR(r[2], 1, 1e-9);
+    EXPECT_NEAR(r[3], 1 + d, 1e-9);
+    EXPECT_LT(r[2], r[3]);
+}
+
 TEST(AscendingRoots, YieldsRootsNearestFirst) {
     // (x−1)(x−2)²(x−4) = x⁴ − 9x³ + 28x² − 36x + 16, ascending coefficients.
     const double c[5] = {16, -36, 28, -9, 1};
