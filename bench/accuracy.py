@@ -4,7 +4,8 @@
 Chart 1 (docs/images/speed-accuracy.png): cost per ray against error, one curve per method
 swept over its knob, on (a) random rays into skeleton scenes (a random-walk chain of blob
 points as in bench/implicit.py, and a random-walk chain of quadratic-kernel segments) and
-(b) the stability suite's rays (tests/stability/cases.py). Cost: EVALS per ray as printed
+(b) the stability suite's rays (tests/stability/cases.py; not the cases with blend lists or
+contacts, which only patches models: see models_beyond_plain_sum). Cost: EVALS per ray as printed
 by rayquery (top row) and time per ray (bottom row: rayquery's CPU time with the rays minus
 without them, so parsing and octree builds are excluded; rayquery is single-threaded, so
 this is its wall time on an idle machine, and unlike wall time it is not stretched by other
@@ -193,12 +194,21 @@ def reference(rayquery, scene, rays):
     return [(hit, t) for hit, t, _ in got[0]], label
 
 
+def models_beyond_plain_sum(scene):
+    """Whether a scene's surface is not the plain sum of its skeletons' fields (blend lists
+    or contacts): every method but patches ignores those statements and so renders another
+    surface by design. Such cases are scored in docs/stability.md, not charted, where their
+    metre-sized "errors" would hide the intersection errors the chart is about."""
+    words = {line.split()[0] for line in scene.splitlines() if line.split()}
+    return bool(words & {"blend", "contact", "propagation"})
+
+
 def stability_sets():
     """(scene, ray lines, truths) per stability case; truths as (hit, t) or None for the
     tangency policy's either-way rays."""
     sets = []
     for case in stability_cases.build():
-        if case.scene is None:
+        if case.scene is None or models_beyond_plain_sum(case.scene):
             continue
         truths = []
         for ray in case.rays:
