@@ -52,4 +52,15 @@ double BisectBracket(const RayField& g, double a, double ga, double b, double gb
 // True when g changes class between two values (one inside, one not).
 inline bool ClassChanges(double ga, double gb) { return (ga > 0) != (gb > 0); }
 
+// The sample after t of a forward search that wants to advance by dt: t + dt, at least the
+// next representable double (so steps too small to move t still progress), at most tEnd.
+double NextSample(double t, double dt, double tEnd);
+
+// The step shared by the sampling methods (march, sphere and segment tracing): having
+// sampled g at ta and tb > ta, the root it reveals in the open interval (tMin, tMax) — tb
+// itself when g(tb) is exactly 0, else the bisected root of a class change (BisectBracket)
+// — or nothing, in which case the search goes on from tb.
+std::optional<double> RootOfStep(const RayField& g, double ta, double ga, double tb, double gb,
+                                 double tolT, double tMin, double tMax);
+
 }  // namespace rs

@@ -34,13 +34,10 @@ std::optional<double> MarchMethod::FirstRoot(const Ray& ray, double tMin, double
     while (ta < t1) {
         // The next sample; the clipped end is always sampled, and a step too small to move
         // a double moves to the next representable t instead.
-        double tb = std::min(std::max(ta + h, std::nextafter(ta, t1)), t1);
+        double tb = NextSample(ta, h, t1);
         double gb = g(tb);
-        if (gb == 0 && tb > tMin && tb < tMax) return tb;
-        if (ClassChanges(ga, gb)) {
-            double root = BisectBracket(g, ta, ga, tb, gb, tolT);
-            if (root > tMin && root < tMax) return root;
-        }
+        if (std::optional<double> root = RootOfStep(g, ta, ga, tb, gb, tolT, tMin, tMax))
+            return root;
         ta = tb;
         ga = gb;
     }

@@ -23,13 +23,10 @@ std::optional<double> SegmentMethod::FirstRoot(const Ray& ray, double tMin, doub
         double k = field_.Bound(Bounds3(ray.At(t), ray.At(t + sigma))).L * length;
         double dt = k > 0 ? std::min(std::abs(gt) / k, sigma) : sigma;
         dt = std::max(dt, tolT);
-        double tn = std::min(std::max(t + dt, std::nextafter(t, t1)), t1);
+        double tn = NextSample(t, dt, t1);
         double gn = g(tn);
-        if (gn == 0 && tn > tMin && tn < tMax) return tn;
-        if (ClassChanges(gt, gn)) {
-            double root = BisectBracket(g, t, gt, tn, gn, tolT);
-            if (root > tMin && root < tMax) return root;
-        }
+        if (std::optional<double> root = RootOfStep(g, t, gt, tn, gn, tolT, tMin, tMax))
+            return root;
         sigma = kGrowth * (tn - t);
         t = tn;
         gt = gn;

@@ -24,13 +24,10 @@ std::optional<double> SphereMethod::FirstRoot(const Ray& ray, double tMin, doubl
         // |g|/Lt is safe (no root strictly before it); below the tolerance, step by it.
         double dt = lt > 0 ? std::abs(gt) / lt : t1 - t;
         dt = std::max(dt, tolT);
-        double tn = std::min(std::max(t + dt, std::nextafter(t, t1)), t1);
+        double tn = NextSample(t, dt, t1);
         double gn = g(tn);
-        if (gn == 0 && tn > tMin && tn < tMax) return tn;
-        if (ClassChanges(gt, gn)) {
-            double root = BisectBracket(g, t, gt, tn, gn, tolT);
-            if (root > tMin && root < tMax) return root;
-        }
+        if (std::optional<double> root = RootOfStep(g, t, gt, tn, gn, tolT, tMin, tMax))
+            return root;
         t = tn;
         gt = gn;
     }
