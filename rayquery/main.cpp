@@ -51,6 +51,17 @@ bool ReadNumber(int argc, char** argv, int i, double& value, std::string& error)
     return true;
 }
 
+// ReadNumber for a value that must be > 0; `what` names it in the error.
+bool ReadPositive(int argc, char** argv, int i, double& value, const char* what,
+                  std::string& error) {
+    if (!ReadNumber(argc, argv, i, value, error)) return false;
+    if (!(value > 0)) {
+        error = std::string(argv[i]) + ": " + what + " must be > 0";
+        return false;
+    }
+    return true;
+}
+
 // Reads the option at argv[i] (and its value) into `overrides`; `i` moves past the value.
 // Returns false with a message on a malformed value; `known` tells whether it was ours.
 bool ReadOverride(int argc, char** argv, int& i, rs::ImplicitOverrides& overrides, bool& known,
@@ -66,11 +77,7 @@ bool ReadOverride(int argc, char** argv, int& i, rs::ImplicitOverrides& override
         }
         overrides.method = method;
     } else if (arg == "-e") {
-        if (!ReadNumber(argc, argv, i, v, error)) return false;
-        if (!(v > 0)) {
-            error = "-e: the tolerance must be > 0";
-            return false;
-        }
+        if (!ReadPositive(argc, argv, i, v, "the tolerance", error)) return false;
         overrides.tolerance = v;
     } else if (arg == "-d") {
         if (!ReadNumber(argc, argv, i, v, error)) return false;
@@ -83,11 +90,7 @@ bool ReadOverride(int argc, char** argv, int& i, rs::ImplicitOverrides& override
         if (!ReadNumber(argc, argv, i, v, error)) return false;
         overrides.dRatio = v;
     } else if (arg == "-k") {
-        if (!ReadNumber(argc, argv, i, v, error)) return false;
-        if (!(v > 0)) {
-            error = "-k: the march step must be > 0";
-            return false;
-        }
+        if (!ReadPositive(argc, argv, i, v, "the march step", error)) return false;
         overrides.step = v;
     } else if (arg == "-H") {
         if (i + 1 >= argc) {

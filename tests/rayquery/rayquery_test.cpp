@@ -182,6 +182,15 @@ QueryRay RayPassing(const Vec3& c, double b, double L, std::mt19937_64& rng, dou
     return r;
 }
 
+// Appends RayPassing(c, b, L) and its analytic answer for a sphere of `radius` at c: the
+// entry parameter (L − sqrt(radius² − b²))/scale when b < radius, else −1 (a miss).
+void AddSphereRay(const Vec3& c, double radius, double b, double L, std::mt19937_64& rng,
+                  std::vector<QueryRay>& rays, std::vector<double>& expected) {
+    double scale;
+    rays.push_back(RayPassing(c, b, L, rng, scale));
+    expected.push_back(b < radius ? (L - std::sqrt(radius * radius - b * b)) / scale : -1);
+}
+
 void ExpectOnSphere(const QueryLine& q, const QueryRay& r, const Vec3& c, double radius,
                     double expectedT, const std::string& what) {
     ASSERT_TRUE(q.hit) << what;
@@ -215,9 +224,7 @@ TEST(RayQuery, PointSkeletonIsSphereOfRadiusThickness) {
             bool hit = i % 2 == 0;
             double b = hit ? std::uniform_real_distribution<double>(0, 0.999)(rng) * e
                            : std::uniform_real_distribution<double>(1.001, 1.9)(rng) * e;
-            double scale;
-            rays.push_back(RayPassing(c, b, L, rng, scale));
-            expected.push_back(hit ? (L - std::sqrt(e * e - b * b)) / scale : -1);
+            AddSphereRay(c, e, b, L, rng, rays, expected);
         }
         std::vector<QueryLine> out = RunQueries(SphereScene(c, k.field), rays);
         for (size_t i = 0; i < rays.size(); ++i) {
@@ -597,9 +604,7 @@ TEST(RayQuery, EveryMethodFindsTheSphere) {
             bool hit = i % 3 != 0;
             double b = hit ? std::uniform_real_distribution<double>(0, 0.95)(rng) * e
                            : std::uniform_real_distribution<double>(1.001, 1.9)(rng) * e;
-            double scale;
-            rays.push_back(RayPassing(c, b, L, rng, scale));
-            expected.push_back(hit ? (L - std::sqrt(e * e - b * b)) / scale : -1);
+            AddSphereRay(c, e, b, L, rng, rays, expected);
         }
         std::vector<QueryLine> out =
             RunQueries(SphereScene(c, "field quadratic 0.8 1 2"), rays,
@@ -628,9 +633,7 @@ TEST(RayQuery, ToleranceOverrideBoundsTheError) {
             std::vector<double> expected;
             for (int i = 0; i < 40; ++i) {
                 double b = std::uniform_real_distribution<double>(0, 0.9)(rng) * e;
-                double scale;
-                rays.push_back(RayPassing({0, 0, 0}, b, 5, rng, scale));
-                expected.push_back((5 - std::sqrt(e * e - b * b)) / scale);
+                AddSphereRay({0, 0, 0}, e, b, 5, rng, rays, expected);
             }
             char args[64];
             std::snprintf(args, sizeof args, "-m %s -e %g", method, eps);
@@ -677,9 +680,7 @@ TEST(RayQuery, PolynomialMethodOnBlobsOnly) {
     for (int i = 0; i < 50; ++i) {
         double b = std::uniform_real_distribution<double>(0, 0.95)(rng) * r;
         double L = std::uniform_real_distribution<double>(2, 1000)(rng);
-        double scale;
-        rays.push_back(RayPassing({1, 2, 3}, b, L, rng, scale));
-        expected.push_back((L - std::sqrt(r * r - b * b)) / scale);
+        AddSphereRay({1, 2, 3}, r, b, L, rng, rays, expected);
     }
     std::vector<QueryLine> out =
         RunQueries(SphereScene({1, 2, 3}, "field blob 2 1.5", "method polynomial"), rays);
@@ -708,9 +709,7 @@ TEST(RayQuery, OctreeOverridesKeepTheAnswers) {
     std::vector<double> expected;
     for (int i = 0; i < 40; ++i) {
         double b = std::uniform_real_distribution<double>(0, 0.95)(rng) * e;
-        double scale;
-        rays.push_back(RayPassing({0, 0, 0}, b, 6, rng, scale));
-        expected.push_back((6 - std::sqrt(e * e - b * b)) / scale);
+        AddSphereRay({0, 0, 0}, e, b, 6, rng, rays, expected);
     }
     const std::string scene = SphereScene({0, 0, 0}, "field quadratic 0.8 1 2");
     for (const char* args :
@@ -746,9 +745,7 @@ TEST(RayQuery, FootprintSetsTheAutomaticTolerance) {
     const double e = 0.8;
     for (int i = 0; i < 30; ++i) {
         double b = std::uniform_real_distribution<double>(0, 0.9)(rng) * e;
-        double scale;
-        rays.push_back(RayPassing({0, 0, 0}, b, 6, rng, scale));
-        expected.push_back((6 - std::sqrt(e * e - b * b)) / scale);
+        AddSphereRay({0, 0, 0}, e, b, 6, rng, rays, expected);
     }
     const std::string scene = SphereScene({0, 0, 0}, "field quadratic 0.8 1 2");
     for (const char* args : {"-f 1e-6", "-f 1e-7 2e-6", "-f 0.01 -e 1e-9"}) {
