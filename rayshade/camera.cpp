@@ -40,6 +40,7 @@ CameraSetup::CameraSetup(const Camera& camera, const RenderOptions& options) {
     dx_ = right_ * (2 * dist * std::tan(hfov * kPi / 360) / options.xres);
     dy_ = -up_ * (2 * dist * std::tan(vfov * kPi / 360) / options.yres);
     corner_ = d - dx_ * (options.xres / 2.0) - dy_ * (options.yres / 2.0);
+    pixelSpan_ = std::min(Length(dx_), Length(dy_)) * screenDist_;
 
     aperture_ = camera.aperture;
     focalDist_ = camera.focalDist > 0 ? camera.focalDist : dist;
@@ -47,7 +48,9 @@ CameraSetup::CameraSetup(const Camera& camera, const RenderOptions& options) {
 
 Ray CameraSetup::EyeRay(double sx, double sy, double lensX, double lensY, double time) const {
     const Vec3 toScreen = corner_ + dx_ * sx + dy_ * sy;
-    Vec3 dir = Normalize(toScreen);
+    // ℓ = |toScreen| serves both the direction and the footprint (one square root per ray).
+    const double ell = Length(toScreen);
+    Vec3 dir = ell > 0 ? toScreen / ell : Vec3{};
     Ray ray{eye_, dir, time};
     if (aperture_ > 0) {
         // Thin lens: aim from a point of the (square) lens at the pinhole ray's point on the
@@ -56,14 +59,11 @@ Ray CameraSetup::EyeRay(double sx, double sy, double lensX, double lensY, double
         ray = {eye_ + offset, Normalize(dir * focalDist_ - offset), time};
     }
     // Footprint (ray.h): the pixel seen from the eye. At the screen point, at distance
-    // ℓ = |toScreen| from the eye, a pixel spans |dx| by |dy|, foreshortened across the ray
-    // by cos θ = screenDist/ℓ at most; so the beam widens by at least
-    // min(|dx|, |dy|)·cos θ/ℓ per unit of distance, from 0 at a pinhole. (With a lens the
-    // beam of one lens sample is the same pixel cone, through the focal point.)
-    const double ell = Length(toScreen);
-    if (ell > 0) {
-        ray.footprintSpread = std::min(Length(dx_), Length(dy_)) * screenDist_ / (ell * ell);
-    }
+    // ℓ from the eye, a pixel spans |dx| by |dy|, foreshortened across the ray by
+    // cos θ = screenDist/ℓ at most; so the beam widens by at least min(|dx|, |dy|)·cos θ/ℓ
+    // = pixelSpan/ℓ² per unit of distance, from 0 at a pinhole. (With a lens the beam of
+    // one lens sample is the same pixel cone, through the focal point.)
+    if (ell > 0) ray.footprintSpread = pixelSpan_ / (ell * ell);
     return ray;
 }
 

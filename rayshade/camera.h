@@ -27,6 +27,7 @@ class CameraSetup {
     Vec3 corner_;         // F0: direction from the eye to the screen's top-left corner
     Vec3 dx_, dy_;        // one pixel along x and (downward) along y
     double screenDist_ = 1;  // distance from the eye to the screen centre (|gaze·dist|)
+    double pixelSpan_ = 0;   // min(|dx|, |dy|)·screenDist: the footprint spread is this / ℓ²
     double aperture_ = 0;
     double focalDist_ = 1;
 };

@@ -241,8 +241,6 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
     // one that the previous pass supersampled (no other test result can change). The order
     // of the lists does not matter: each pixel's samples depend on the pixel alone.
     if (state.phase == Phase::Refinement) {
-        std::vector<int, LargeBufferAllocator<int>> testedInPass(pixels.size(), -1),
-            queuedInPass(pixels.size(), -1);
         auto isInterior = [&](long n) {
             long x = n % w, y = n / w;
             return x >= 1 && x <= w - 2 && y >= 1 && y <= h - 1;
@@ -256,20 +254,17 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
             report(static_cast<long>(state.todo.size()) / 4);
             safePoint();
 
-            const int pass = state.pass;
-            std::vector<long> next;
-            auto test = [&](long c) {
-                if (testedInPass[c] == pass) return;
-                testedInPass[c] = pass;
-                if (!NeedsRefinement(pixels.data(), static_cast<int>(c % w), static_cast<int>(c / w)))
-                    return;
+            // The pixels whose contrast exceeds the thresholds queue their five-pixel
+            // neighbourhoods (each pixel once) for the next pass.
+            std::vector<long> next, tested;
+            auto queueNeighbourhood = [&](long c) {
                 for (long n : {c, c - 1, c + 1, c - w, c + w}) {
-                    if (pixels[n].supersampled || queuedInPass[n] == pass) continue;
-                    queuedInPass[n] = pass;
+                    if (pixels[n].supersampled || pixels[n].queued) continue;
+                    pixels[n].queued = true;
                     next.push_back(n);
                 }
             };
-            if (pass == 0) {
+            if (state.pass == 0) {
                 // Every interior pixel is tested: the tests run in parallel by rows (they
                 // only read), the queueing of the flagged neighbourhoods stays serial.
                 std::vector<uint8_t, LargeBufferAllocator<uint8_t>> excessive(pixels.size(), 0);
@@ -279,26 +274,31 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
                     for (int x = 1; x < w - 1; ++x) row[x] = NeedsRefinement(pixels.data(), x, y);
                 });
                 safePoint();  // a stop cuts the tests short: save the state from before them
-                for (long c = 0; c < static_cast<long>(pixels.size()); ++c) {
-                    if (!excessive[c]) continue;
-                    for (long n : {c, c - 1, c + 1, c - w, c + w}) {
-                        if (pixels[n].supersampled || queuedInPass[n] == pass) continue;
-                        queuedInPass[n] = pass;
-                        next.push_back(n);
-                    }
-                }
+                for (long c = 0; c < static_cast<long>(pixels.size()); ++c)
+                    if (excessive[c]) queueNeighbourhood(c);
             } else {
                 for (long t : state.todo)
-                    for (long n : {t, t - 1, t + 1, t - w, t + w})
-                        if (n >= 0 && n < static_cast<long>(pixels.size()) && isInterior(n)) test(n);
+                    for (long c : {t, t - 1, t + 1, t - w, t + w}) {
+                        if (c < 0 || c >= static_cast<long>(pixels.size()) || !isInterior(c) ||
+                            pixels[c].tested)
+                            continue;
+                        pixels[c].tested = true;
+                        tested.push_back(c);
+                        if (NeedsRefinement(pixels.data(), static_cast<int>(c % w), static_cast<int>(c / w)))
+                            queueNeighbourhood(c);
+                    }
             }
+            for (long c : tested) pixels[c].tested = false;
+            for (long n : next) pixels[n].queued = false;
             state.todo = std::move(next);
             ++state.pass;
             if (state.todo.empty()) state.phase = Phase::Done;
         }
     }
     if (progress_) progress_(totalWork, totalWork);
-    return Encode(state, withAlpha);
+    Image image = Encode(state, withAlpha);
+    safePoint();  // a stop during the encoding may have left rows unwritten
+    return image;
 }
 
 Image Renderer::Encode(const FrameState& state, bool withAlpha) const {
@@ -310,8 +310,8 @@ Image Renderer::Encode(const FrameState& state, bool withAlpha) const {
     image.height = h;
     image.channels = withAlpha ? 4 : 3;
     image.pixels.resize(static_cast<size_t>(w) * h * image.channels);
-    for (int y = 0; y < h; ++y) {
-        uint8_t* out = image.Row(y);
+    ParallelFor(h, [&](long y) {
+        uint8_t* out = image.Row(static_cast<int>(y));
         for (int x = 0; x < w; ++x) {
             const Pixel& px = state.pixels[static_cast<size_t>(y) * w + x];
             if (!std::isfinite(px.r) || !std::isfinite(px.g) || !std::isfinite(px.b)) [[unlikely]]
@@ -321,7 +321,7 @@ Image Renderer::Encode(const FrameState& state, bool withAlpha) const {
             *out++ = EncodeChannel(px.b, exponent);
             if (withAlpha) *out++ = EncodeChannel(px.alpha, 1);
         }
-    }
+    });
     return image;
 }
 

@@ -42,8 +42,12 @@ struct PixelState {
     float r = 0, g = 0, b = 0;
     float alpha = 0;
     int16_t singleCell = 0;
-    bool sampled = false;       // the single sample has been taken
-    bool supersampled = false;
+    bool sampled : 1 = false;       // the single sample has been taken
+    bool supersampled : 1 = false;
+    // Work marks of the current refinement pass (contrast tested, queued for supersampling);
+    // the renderer clears them before the next pass. Not part of the saved state.
+    bool tested : 1 = false;
+    bool queued : 1 = false;
 
     Color Value() const { return {r, g, b}; }
     // Values beyond float's range (a light of intensity 1e300) saturate at ±FLT_MAX instead of
