@@ -146,6 +146,52 @@ std::string RunCpp(const std::vector<std::string>& args) {
 
 }  // namespace
 
+bool CppWouldOnlyStripComments(std::string_view text) {
+    auto isIdentifierStart = [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+    };
+    auto isIdentifierChar = [&](char c) { return isIdentifierStart(c) || (c >= '0' && c <= '9'); };
+    bool lineStart = true;  // only blanks so far on this line
+    for (size_t i = 0; i < text.size();) {
+        const char c = text[i];
+        if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+            const size_t end = text.find("*/", i + 2);
+            if (end == std::string_view::npos) return true;  // the lexer reports it
+            i = end + 2;  // a comment is a blank for the line-start test, as for cpp
+            continue;
+        }
+        if (c == '\n') {
+            lineStart = true;
+            ++i;
+            continue;
+        }
+        if (c == ' ' || c == '\t' || c == '\r') {
+            ++i;
+            continue;
+        }
+        if ((c == '#' && lineStart) || c == '\\' || c == '"' || c == '\'' ||
+            (c == '/' && i + 1 < text.size() && text[i + 1] == '/') ||
+            (static_cast<unsigned char>(c) < 0x20) || c == 0x7f)
+            return false;
+        lineStart = false;
+        if (isIdentifierStart(c)) {
+            size_t end = i + 1;
+            while (end < text.size() && isIdentifierChar(text[end])) ++end;
+            const std::string_view word = text.substr(i, end - i);
+            if (word[0] == '_') return false;
+            for (std::string_view name : kCppPredefinedNames)
+                if (word == name) return false;
+            i = end;
+            continue;
+        }
+        // Anything else (digits, punctuation) one character at a time. The letters of a
+        // number such as `1e5` are then checked as if they were an identifier, which can
+        // only make the answer more conservative.
+        ++i;
+    }
+    return true;
+}
+
 SourceText ReadSceneSource(const std::string& path, bool useCpp, const std::string& cppArgs,
                            const std::vector<std::string>& defines) {
     SourceText src;
@@ -153,6 +199,13 @@ SourceText ReadSceneSource(const std::string& path, bool useCpp, const std::stri
     if (!useCpp) {
         src.text = ReadRaw(path);
         return src;
+    }
+    if (!path.empty() && SplitWords(cppArgs).empty() && defines.empty()) {
+        std::string text = ReadRaw(path);
+        if (CppWouldOnlyStripComments(text)) {
+            src.text = std::move(text);
+            return src;
+        }
     }
     std::vector<std::string> args{"cpp"};
     for (std::string& w : SplitWords(cppArgs)) args.push_back(std::move(w));
