@@ -9,10 +9,12 @@
 
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <sstream>
 
 #include "libcommon/limits.h"
 #include "libcommon/error.h"
+#include "libshade/builtin_preprocessor.h"
 
 extern char** environ;
 
@@ -144,53 +146,28 @@ std::string RunCpp(const std::vector<std::string>& args) {
     return out;
 }
 
-}  // namespace
-
-bool CppWouldOnlyStripComments(std::string_view text) {
-    auto isIdentifierStart = [](char c) {
-        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+// The macros of cpp arguments and extra definitions when every one is a -D definition
+// (`-DNAME`, `-DNAME=body`; `defines` hold them without the -D); nothing otherwise.
+std::optional<std::vector<CommandLineMacro>> OnlyDefinitions(const std::vector<std::string>& cppWords,
+                                                             const std::vector<std::string>& defines) {
+    std::vector<CommandLineMacro> macros;
+    auto add = [&](const std::string& definition) {
+        if (definition.empty()) return false;
+        const size_t equals = definition.find('=');
+        if (equals == std::string::npos)
+            macros.push_back({definition, "1"});
+        else
+            macros.push_back({definition.substr(0, equals), definition.substr(equals + 1)});
+        return true;
     };
-    auto isIdentifierChar = [&](char c) { return isIdentifierStart(c) || (c >= '0' && c <= '9'); };
-    bool lineStart = true;  // only blanks so far on this line
-    for (size_t i = 0; i < text.size();) {
-        const char c = text[i];
-        if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
-            const size_t end = text.find("*/", i + 2);
-            if (end == std::string_view::npos) return true;  // the lexer reports it
-            i = end + 2;  // a comment is a blank for the line-start test, as for cpp
-            continue;
-        }
-        if (c == '\n') {
-            lineStart = true;
-            ++i;
-            continue;
-        }
-        if (c == ' ' || c == '\t' || c == '\r') {
-            ++i;
-            continue;
-        }
-        if ((c == '#' && lineStart) || c == '\\' || c == '"' || c == '\'' ||
-            (c == '/' && i + 1 < text.size() && text[i + 1] == '/') ||
-            (static_cast<unsigned char>(c) < 0x20) || c == 0x7f)
-            return false;
-        lineStart = false;
-        if (isIdentifierStart(c)) {
-            size_t end = i + 1;
-            while (end < text.size() && isIdentifierChar(text[end])) ++end;
-            const std::string_view word = text.substr(i, end - i);
-            if (word[0] == '_') return false;
-            for (std::string_view name : kCppPredefinedNames)
-                if (word == name) return false;
-            i = end;
-            continue;
-        }
-        // Anything else (digits, punctuation) one character at a time. The letters of a
-        // number such as `1e5` are then checked as if they were an identifier, which can
-        // only make the answer more conservative.
-        ++i;
-    }
-    return true;
+    for (const std::string& w : cppWords)
+        if (w.rfind("-D", 0) != 0 || !add(w.substr(2))) return std::nullopt;
+    for (const std::string& d : defines)
+        if (!add(d)) return std::nullopt;
+    return macros;
 }
+
+}  // namespace
 
 SourceText ReadSceneSource(const std::string& path, bool useCpp, const std::string& cppArgs,
                            const std::vector<std::string>& defines) {
@@ -200,11 +177,12 @@ SourceText ReadSceneSource(const std::string& path, bool useCpp, const std::stri
         src.text = ReadRaw(path);
         return src;
     }
-    if (!path.empty() && SplitWords(cppArgs).empty() && defines.empty()) {
-        std::string text = ReadRaw(path);
-        if (CppWouldOnlyStripComments(text)) {
-            src.text = std::move(text);
-            return src;
+    if (!path.empty()) {
+        if (auto macros = OnlyDefinitions(SplitWords(cppArgs), defines)) {
+            if (auto text = PreprocessBuiltin(ReadRaw(path), path, *macros)) {
+                src.text = std::move(*text);
+                return src;
+            }
         }
     }
     std::vector<std::string> args{"cpp"};

@@ -1,0 +1,425 @@
+#include "libshade/builtin_preprocessor.h"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+
+namespace rs {
+
+namespace {
+
+// Thrown inside this file to abandon the built-in path; PreprocessBuiltin turns it into
+// "no result".
+struct NeedsCpp {};
+
+// Deeper includes or macro-argument nesting go to cpp (which allows 200 include levels).
+constexpr int kMaxDepth = 64;
+
+enum class PpKind { Identifier, Blank, Newline, Other };
+
+struct PpToken {
+    PpKind kind;
+    std::string text;
+};
+using PpTokens = std::vector<PpToken>;
+
+struct Macro {
+    bool functionLike = false;
+    std::vector<std::string> params;
+    PpTokens body;  // single blanks between tokens, none at either end
+
+    bool operator==(const Macro& o) const {
+        if (functionLike != o.functionLike || params != o.params || body.size() != o.body.size())
+            return false;
+        for (size_t i = 0; i < body.size(); ++i)
+            if (body[i].kind != o.body[i].kind || body[i].text != o.body[i].text) return false;
+        return true;
+    }
+};
+
+bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+bool IsDigit(char c) { return c >= '0' && c <= '9'; }
+bool IsIdentifierStart(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+bool IsIdentifierChar(char c) { return IsIdentifierStart(c) || IsDigit(c); }
+
+// An identifier cpp may define on its own: reserved names and the traditional ones.
+bool IsPredefinedByCpp(std::string_view word) {
+    if (word[0] == '_') return true;
+    return std::find(std::begin(kCppPredefinedNames), std::end(kCppPredefinedNames), word) !=
+           std::end(kCppPredefinedNames);
+}
+
+// Whether a token may stand next to a macro name or parameter: then cpp's spacing of the
+// expansion cannot join it to, or split it from, its neighbours in the scene language.
+bool IsSeparator(const PpToken& t) {
+    return t.kind == PpKind::Blank || t.kind == PpKind::Newline ||
+           (t.kind == PpKind::Other && (t.text == "(" || t.text == ")" || t.text == ","));
+}
+
+// Splits comment-free text into tokens: identifiers, pp-numbers (one Other token, so the
+// letters of `1e5` are not an identifier), blank runs (one blank), newlines and single
+// characters. Throws NeedsCpp on quotes and on identifiers cpp predefines.
+PpTokens Tokenize(std::string_view s) {
+    PpTokens out;
+    for (size_t i = 0; i < s.size();) {
+        const char c = s[i];
+        size_t j = i + 1;
+        if (c == '\n') {
+            out.push_back({PpKind::Newline, "\n"});
+        } else if (IsBlank(c)) {
+            while (j < s.size() && IsBlank(s[j])) ++j;
+            out.push_back({PpKind::Blank, " "});
+        } else if (IsIdentifierStart(c)) {
+            while (j < s.size() && IsIdentifierChar(s[j])) ++j;
+            const std::string_view word = s.substr(i, j - i);
+            if (IsPredefinedByCpp(word)) throw NeedsCpp{};
+            out.push_back({PpKind::Identifier, std::string(word)});
+        } else if (IsDigit(c) || (c == '.' && j < s.size() && IsDigit(s[j]))) {
+            for (; j < s.size(); ++j) {
+                const char d = s[j], before = s[j - 1];
+                const bool exponentSign = (d == '+' || d == '-') && (before == 'e' || before == 'E' ||
+                                                                     before == 'p' || before == 'P');
+                if (!IsIdentifierChar(d) && d != '.' && !exponentSign) break;
+            }
+            out.push_back({PpKind::Other, std::string(s.substr(i, j - i))});
+        } else if (c == '"' || c == '\'') {
+            throw NeedsCpp{};
+        } else {
+            out.push_back({PpKind::Other, std::string(1, c)});
+        }
+        i = j;
+    }
+    return out;
+}
+
+// Replaces each comment by a blank followed by the newlines it contained, so every line
+// keeps its number. Throws NeedsCpp on what cpp would treat specially outside comments:
+// `//`, backslashes, apostrophes, control characters, and a '#' right after a comment that
+// spans lines (whether that is a directive depends on where the comment started). Quoted
+// text is copied as is (only an include line may have it; Tokenize rejects it elsewhere).
+// An unterminated comment is left in place for the lexer to report with its location.
+std::string StripComments(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (size_t i = 0; i < text.size();) {
+        const char c = text[i];
+        const char next = i + 1 < text.size() ? text[i + 1] : '\0';
+        if (c == '/' && next == '*') {
+            const size_t end = text.find("*/", i + 2);
+            if (end == std::string_view::npos) {
+                out.append(text.substr(i));
+                break;
+            }
+            const long newlines = std::count(text.begin() + i, text.begin() + end, '\n');
+            out += ' ';
+            out.append(newlines, '\n');
+            i = end + 2;
+            if (newlines > 0) {
+                size_t k = i;
+                while (k < text.size() && IsBlank(text[k])) ++k;
+                if (k < text.size() && text[k] == '#') throw NeedsCpp{};
+            }
+            continue;
+        }
+        if (c == '"') {
+            const size_t end = text.find_first_of("\"\n", i + 1);
+            if (end == std::string_view::npos || text[end] != '"') throw NeedsCpp{};
+            out.append(text.substr(i, end + 1 - i));
+            i = end + 1;
+            continue;
+        }
+        if ((c == '/' && next == '/') || c == '\\' || c == '\'' ||
+            (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') ||
+            c == 0x7f)
+            throw NeedsCpp{};
+        out += c;
+        ++i;
+    }
+    return out;
+}
+
+std::string_view TrimBlanks(std::string_view s) {
+    while (!s.empty() && IsBlank(s.front())) s.remove_prefix(1);
+    while (!s.empty() && IsBlank(s.back())) s.remove_suffix(1);
+    return s;
+}
+
+PpTokens TrimBlankTokens(PpTokens t) {
+    while (!t.empty() && t.back().kind == PpKind::Blank) t.pop_back();
+    size_t first = 0;
+    while (first < t.size() && t[first].kind == PpKind::Blank) ++first;
+    t.erase(t.begin(), t.begin() + static_cast<long>(first));
+    return t;
+}
+
+// Reads an identifier at the start of `s` (after blanks); empty when there is none.
+std::string_view TakeIdentifier(std::string_view& s) {
+    s = TrimBlanks(s);
+    size_t n = 0;
+    if (!s.empty() && IsIdentifierStart(s[0]))
+        while (n < s.size() && IsIdentifierChar(s[n])) ++n;
+    std::string_view word = s.substr(0, n);
+    s.remove_prefix(n);
+    if (!word.empty() && IsPredefinedByCpp(word)) throw NeedsCpp{};
+    return word;
+}
+
+class Preprocessor {
+  public:
+    explicit Preprocessor(const std::vector<CommandLineMacro>& predefined) {
+        for (const CommandLineMacro& m : predefined) Define(m.name + " " + m.body);
+    }
+
+    // Preprocesses one file's text; its includes are read recursively.
+    std::string Run(std::string_view text, const std::string& fileName, int depth);
+
+  private:
+    // Processes `#define` given the rest of its line.
+    void Define(std::string_view rest);
+    // Expands the macros in `in` (macros named in `disabled` are being expanded already).
+    PpTokens Expand(const PpTokens& in, std::vector<std::string>& disabled, int depth);
+    // Bounds the work on runaway input (macros that double at every level): such input
+    // goes to cpp. The bound, in tokens produced, is far above what scenes use.
+    void CountWork(size_t units) {
+        work_ += units;
+        if (work_ > kMaxWork) throw NeedsCpp{};
+    }
+    static constexpr size_t kMaxWork = size_t{1} << 22;
+
+    std::map<std::string, Macro, std::less<>> macros_;
+    size_t work_ = 0;
+};
+
+void Preprocessor::Define(std::string_view rest) {
+    const std::string name(TakeIdentifier(rest));
+    if (name.empty()) throw NeedsCpp{};
+    Macro m;
+    if (!rest.empty() && rest[0] == '(') {
+        m.functionLike = true;
+        rest.remove_prefix(1);
+        for (bool first = true;; first = false) {
+            std::string_view param = TakeIdentifier(rest);
+            rest = TrimBlanks(rest);
+            if (param.empty()) {
+                if (!(first && !rest.empty() && rest[0] == ')')) throw NeedsCpp{};  // `...` too
+            } else {
+                if (std::find(m.params.begin(), m.params.end(), param) != m.params.end())
+                    throw NeedsCpp{};
+                m.params.emplace_back(param);
+            }
+            if (rest.empty()) throw NeedsCpp{};
+            const char c = rest[0];
+            rest.remove_prefix(1);
+            if (c == ')') break;
+            if (c != ',') throw NeedsCpp{};
+        }
+    } else if (!rest.empty() && !IsBlank(rest[0])) {
+        throw NeedsCpp{};  // cpp warns about a missing blank after the name
+    }
+    m.body = TrimBlankTokens(Tokenize(TrimBlanks(rest)));
+    for (const PpToken& t : m.body)
+        if (t.text == "#") throw NeedsCpp{};  // stringizing and pasting
+    auto it = macros_.find(name);
+    if (it != macros_.end()) {
+        if (!(it->second == m)) throw NeedsCpp{};  // cpp warns about a redefinition
+        return;
+    }
+    macros_.emplace(name, std::move(m));
+}
+
+PpTokens Preprocessor::Expand(const PpTokens& in, std::vector<std::string>& disabled, int depth) {
+    if (depth > kMaxDepth) throw NeedsCpp{};
+    PpTokens out;
+    for (size_t i = 0; i < in.size(); ++i) {
+        const auto it = in[i].kind == PpKind::Identifier ? macros_.find(in[i].text) : macros_.end();
+        if (it == macros_.end()) {
+            out.push_back(in[i]);
+            continue;
+        }
+        // A macro cpp would leave unexpanded (inside its own expansion, or a function-like
+        // one without arguments) could expand later in ways not followed here.
+        if (std::find(disabled.begin(), disabled.end(), it->first) != disabled.end())
+            throw NeedsCpp{};
+        const Macro& macro = it->second;
+        PpTokens replacement;
+        size_t last = i;  // the invocation's last token
+        long newlines = 0;
+        if (!macro.functionLike) {
+            replacement = macro.body;
+        } else {
+            size_t j = i + 1;
+            for (; j < in.size() && (in[j].kind == PpKind::Blank || in[j].kind == PpKind::Newline); ++j)
+                newlines += in[j].kind == PpKind::Newline;
+            if (j == in.size() || in[j].text != "(") throw NeedsCpp{};
+            std::vector<PpTokens> args(1);
+            int nesting = 1;
+            for (++j; j < in.size(); ++j) {
+                const PpToken& t = in[j];
+                if (t.kind == PpKind::Newline) {
+                    ++newlines;
+                    args.back().push_back({PpKind::Blank, " "});
+                    continue;
+                }
+                if (t.text == "(") ++nesting;
+                if (t.text == ")" && --nesting == 0) break;
+                if (t.text == "," && nesting == 1) {
+                    args.emplace_back();
+                    continue;
+                }
+                args.back().push_back(t);
+            }
+            if (j == in.size()) throw NeedsCpp{};  // runs into a directive or the end
+            last = j;
+            for (PpTokens& a : args) a = TrimBlankTokens(std::move(a));
+            const bool noArguments = macro.params.empty() && args.size() == 1 && args[0].empty();
+            if (!noArguments && args.size() != macro.params.size()) throw NeedsCpp{};
+            // Arguments are expanded on their own first (none is an operand of # or ##).
+            for (PpTokens& a : args) a = Expand(a, disabled, depth + 1);
+            for (size_t b = 0; b < macro.body.size(); ++b) {
+                const PpToken& t = macro.body[b];
+                const auto p = t.kind == PpKind::Identifier
+                                   ? std::find(macro.params.begin(), macro.params.end(), t.text)
+                                   : macro.params.end();
+                if (p == macro.params.end()) {
+                    replacement.push_back(t);
+                    continue;
+                }
+                if ((b > 0 && !IsSeparator(macro.body[b - 1])) ||
+                    (b + 1 < macro.body.size() && !IsSeparator(macro.body[b + 1])))
+                    throw NeedsCpp{};
+                const PpTokens& arg = args[static_cast<size_t>(p - macro.params.begin())];
+                replacement.insert(replacement.end(), arg.begin(), arg.end());
+            }
+        }
+        if ((i > 0 && !IsSeparator(in[i - 1])) || (last + 1 < in.size() && !IsSeparator(in[last + 1])))
+            throw NeedsCpp{};
+        disabled.push_back(it->first);
+        PpTokens result = Expand(replacement, disabled, depth + 1);
+        disabled.pop_back();
+        out.push_back({PpKind::Blank, " "});
+        out.insert(out.end(), result.begin(), result.end());
+        out.push_back({PpKind::Blank, " "});
+        // An invocation written over several lines: the lines after it keep their numbers.
+        for (long n = 0; n < newlines; ++n) out.push_back({PpKind::Newline, "\n"});
+        CountWork(result.size());
+        i = last;
+    }
+    return out;
+}
+
+std::string Preprocessor::Run(std::string_view text, const std::string& fileName, int depth) {
+    if (depth > kMaxDepth) throw NeedsCpp{};
+    const std::string clean = StripComments(text);
+    // Conditional groups: a line is processed when every enclosing group is taken.
+    struct Group {
+        bool enclosingActive;
+        bool condition;
+        bool inElse = false;
+        bool Active() const { return enclosingActive && (inElse ? !condition : condition); }
+    };
+    std::vector<Group> groups;
+    auto active = [&] { return groups.empty() || groups.back().Active(); };
+
+    std::string out;
+    PpTokens pending;  // text lines since the last directive
+    auto flush = [&] {
+        std::vector<std::string> disabled;
+        const size_t before = out.size();
+        for (const PpToken& t : Expand(pending, disabled, 0)) out += t.text;
+        pending.clear();
+        CountWork(out.size() - before);
+    };
+    int lineNumber = 0;
+    for (size_t start = 0; start < clean.size();) {
+        size_t end = clean.find('\n', start);
+        const bool lastLine = end == std::string::npos;
+        if (lastLine) end = clean.size();
+        std::string_view line(clean.data() + start, end - start);
+        start = end + 1;
+        ++lineNumber;
+
+        std::string_view rest = TrimBlanks(line);
+        if (rest.empty() || rest[0] != '#') {
+            if (active()) {
+                PpTokens tokens = Tokenize(line);
+                pending.insert(pending.end(), tokens.begin(), tokens.end());
+                pending.push_back({PpKind::Newline, "\n"});
+            } else {
+                out += '\n';
+            }
+            continue;
+        }
+        flush();
+        rest.remove_prefix(1);
+        const std::string_view directive = TakeIdentifier(rest);
+        rest = TrimBlanks(rest);
+        if (directive == "ifdef" || directive == "ifndef" || directive == "if") {
+            if (!active()) {
+                groups.push_back({false, false});
+            } else {
+                if (directive == "if") throw NeedsCpp{};
+                const std::string_view name = TakeIdentifier(rest);
+                if (name.empty() || !TrimBlanks(rest).empty()) throw NeedsCpp{};
+                const bool defined = macros_.find(name) != macros_.end();
+                groups.push_back({true, directive == "ifdef" ? defined : !defined});
+            }
+        } else if (directive == "else" || directive == "endif") {
+            if (groups.empty() || (groups.back().enclosingActive && !rest.empty())) throw NeedsCpp{};
+            if (directive == "endif") {
+                groups.pop_back();
+            } else {
+                if (groups.back().inElse) throw NeedsCpp{};
+                groups.back().inElse = true;
+            }
+        } else if (directive == "elif") {
+            if (groups.empty() || groups.back().enclosingActive) throw NeedsCpp{};
+        } else if (!active()) {
+            // Any other directive in a skipped group is ignored, as cpp does.
+        } else if (directive == "define") {
+            Define(rest);
+        } else if (directive == "undef") {
+            const std::string_view name = TakeIdentifier(rest);
+            if (name.empty() || !TrimBlanks(rest).empty()) throw NeedsCpp{};
+            if (auto it = macros_.find(name); it != macros_.end()) macros_.erase(it);
+        } else if (directive == "include") {
+            if (rest.size() < 3 || rest[0] != '"') throw NeedsCpp{};
+            const size_t close = rest.find('"', 1);
+            if (close == std::string_view::npos || !TrimBlanks(rest.substr(close + 1)).empty())
+                throw NeedsCpp{};
+            const std::string name(rest.substr(1, close - 1));
+            const size_t slash = fileName.rfind('/');
+            const std::string path = name[0] == '/' || slash == std::string::npos
+                                         ? name
+                                         : fileName.substr(0, slash + 1) + name;
+            std::ifstream file(path, std::ios::binary);
+            std::stringstream contents;
+            if (!file || !(contents << file.rdbuf())) throw NeedsCpp{};
+            std::string included = Run(contents.str(), path, depth + 1);
+            if (!included.empty() && included.back() != '\n') included += '\n';
+            out += "# 1 \"" + path + "\"\n" + included + "# " + std::to_string(lineNumber + 1) +
+                   " \"" + fileName + "\"";
+        } else if (!directive.empty() || !rest.empty()) {
+            throw NeedsCpp{};  // any other directive (the null directive `#` is allowed)
+        }
+        if (!lastLine) out += '\n';
+    }
+    flush();
+    if (!groups.empty()) throw NeedsCpp{};  // cpp reports the unterminated group
+    return out;
+}
+
+}  // namespace
+
+std::optional<std::string> PreprocessBuiltin(const std::string& text, const std::string& fileName,
+                                             const std::vector<CommandLineMacro>& predefined) {
+    try {
+        Preprocessor preprocessor(predefined);
+        return preprocessor.Run(text, fileName, 0);
+    } catch (const NeedsCpp&) {
+        return std::nullopt;
+    }
+}
+
+}  // namespace rs
