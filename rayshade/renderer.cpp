@@ -199,11 +199,14 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
         }
     };
 
-    // 1. One sample per pixel, in blocks of rows so the state can be saved between them.
+    // 1. One sample per pixel, in blocks of rows so the state can be saved between them:
+    // sixteen blocks (of at least 16 rows). Each block ends with threads idle while the
+    // last rows finish, so fewer, larger blocks scale better; a stop request does not wait
+    // for the block (the workers stop taking rows).
     if (state.phase == Phase::SingleSamples) {
-        constexpr int kBlockRows = 16;
-        for (int y0 = 0; y0 < rows; y0 += kBlockRows) {
-            int y1 = std::min(rows, y0 + kBlockRows);
+        const int blockRows = std::max(16, (rows + 15) / 16);
+        for (int y0 = 0; y0 < rows; y0 += blockRows) {
+            int y1 = std::min(rows, y0 + blockRows);
             ParallelFor(y1 - y0, [&](long i) {
                 long y = y0 + i;
                 for (int x = 0; x < w; ++x) {
