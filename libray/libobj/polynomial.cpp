@@ -130,6 +130,11 @@ double EvaluatePolynomial(const double* c, int degree, double x) {
 AscendingRoots::AscendingRoots(const double* coeffs, int degree, double lo, double hi) {
     degree = std::min(degree, 4);
     while (degree > 0 && coeffs[degree] == 0) --degree;
+    // Rejected intervals (most rays that miss a quartic surface) stop here, with no levels.
+    if (degree >= 3 && lo <= hi && !MayHaveRoot(coeffs, degree, lo, hi)) {
+        nLevels_ = 0;
+        return;
+    }
     // Level k is the k-th derivative; the chain stops at the first of degree ≤ 2.
     Level& top = levels_[0];
     top.degree = std::max(degree, 0);
@@ -140,12 +145,6 @@ AscendingRoots::AscendingRoots(const double* coeffs, int degree, double lo, doub
         Level& child = levels_[nLevels_++];
         child.degree = parent.degree - 1;
         for (int i = 0; i <= child.degree; ++i) child.c[i] = (i + 1) * parent.c[i + 1];
-    }
-    if (top.degree >= 3 && lo <= hi && !MayHaveRoot(top.c, top.degree, lo, hi)) {
-        top.done = true;
-        top.pendingZero = false;
-        nLevels_ = 1;
-        return;
     }
     for (int k = 0; k < nLevels_; ++k) Start(levels_[k], lo, hi);
 }
