@@ -7,9 +7,10 @@
 //
 // Method (cubic and quartic): the roots of the derivative split the line into pieces on
 // which the polynomial is monotonic, so each piece holds at most one root. A piece whose
-// end values change sign is searched by Newton's method safeguarded with bisection; a
-// critical point where |p| is within the rounding-error bound of Horner's rule is reported
-// as a multiple root (this is how tangent rays find double roots). Nothing is assumed
+// end values change sign is searched by Halley's method (Newton's with a curvature
+// correction; cubic convergence) safeguarded with bisection; a critical point where |p| is
+// within the rounding-error bound of Horner's rule is reported as a multiple root (this is
+// how tangent rays find double roots). Nothing is assumed
 // about the spacing of the roots, so nearly equal roots are separated as long as the
 // polynomial's values can tell them apart.
 //
