@@ -205,6 +205,7 @@ bool MayHaveRoot(const double* c, int degree, double lo, double hi) {
 void AscendingRoots::Start(Level& level, double lo, double hi) {
     level.hi = hi;
     level.nClosed = level.iClosed = 0;
+    level.pendingZero = false;
     level.done = !(lo <= hi);
     if (level.done) return;
     if (level.degree <= 2) {
