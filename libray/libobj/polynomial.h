@@ -10,9 +10,9 @@
 // end values change sign is searched by Halley's method (Newton's with a curvature
 // correction; cubic convergence) safeguarded with bisection; a critical point where |p| is
 // within the rounding-error bound of Horner's rule is reported as a multiple root (this is
-// how tangent rays find double roots). Nothing is assumed
-// about the spacing of the roots, so nearly equal roots are separated as long as the
-// polynomial's values can tell them apart.
+// how tangent rays find double roots). Nothing is assumed about the spacing of the roots,
+// so nearly equal roots are separated as long as the polynomial's values can tell them
+// apart.
 //
 // Tolerances:
 //  * "p(x) is zero" means |p(x)| ≤ kZeroTolerance · Σ|c_i|·|x|^i, a few times the
