@@ -57,7 +57,9 @@ namespace {
 // terms at most 4 in size on the ball's chord), so its computed values differ from the true
 // field minus T by a few hundred ulp of T + Σs at most; a field bound below T by 10⁻⁷ of
 // that is far outside this error and outside the solver's zero tolerance, so every value the
-// solver would compute there is negative and it would report no root.
+// solver would compute there is negative and it would report no root. The rounding of the
+// interval's start point (about u·|o + t·d|, moving the field by up to 4s/r times that) stays
+// below the margin for rays starting within some 10⁷ ball radii of the blob.
 constexpr double kFieldBoundMargin = 1e-7;
 
 }  // namespace
