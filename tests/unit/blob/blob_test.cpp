@@ -86,6 +86,22 @@ TEST(Blob, TwoBallsHitWhereTheFieldEqualsTheThreshold) {
     EXPECT_GT(hits, 100);
 }
 
+TEST(Blob, GrazingRaysHitFromNearAndFarCameras) {
+    // Rays passing the centre at 1 − 10⁻⁶ of the surface radius: the field peaks only
+    // ~10⁻⁶ above the threshold along them, yet they must hit where the sphere says.
+    const Vec3 centre{0.25, -0.5, 0.75};
+    Blob blob = SingleBall(centre);
+    const double offset = kSurfaceRadius * (1 - 1e-6);
+    const double halfChord = std::sqrt(kSurfaceRadius * kSurfaceRadius - offset * offset);
+    for (double distance : {3.0, 1e2, 1e4, 1e6}) {
+        Ray ray{centre + Vec3{0, -distance, offset}, {0, 1, 0}, 0};
+        PrimitiveHit hit;
+        ASSERT_TRUE(blob.Intersect(ray, 1e-5, 1e14, hit)) << "distance " << distance;
+        EXPECT_NEAR(hit.t, distance - halfChord, 1e-6 * halfChord + 64 * distance * 2.2e-16)
+            << "distance " << distance;
+    }
+}
+
 TEST(Blob, GrazingRaysThroughTheSaddleOfTwoBalls) {
     // Balls s = r = 1 at x = ±a, threshold T: on the plane x = 0 both are at ρ² = a² + y² + z²,
     // so a ray along y at height z meets the surface where 2(1 − ρ²)² = T, i.e.
