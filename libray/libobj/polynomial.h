@@ -7,11 +7,12 @@
 //
 // Method (cubic and quartic): the roots of the derivative split the line into pieces on
 // which the polynomial is monotonic, so each piece holds at most one root. A piece whose
-// end values change sign is searched by Newton's method safeguarded with bisection; a
-// critical point where |p| is within the rounding-error bound of Horner's rule is reported
-// as a multiple root (this is how tangent rays find double roots). Nothing is assumed
-// about the spacing of the roots, so nearly equal roots are separated as long as the
-// polynomial's values can tell them apart.
+// end values change sign is searched by Halley's method (Newton's with a curvature
+// correction; cubic convergence) safeguarded with bisection; a critical point where |p| is
+// within the rounding-error bound of Horner's rule is reported as a multiple root (this is
+// how tangent rays find double roots). Nothing is assumed about the spacing of the roots,
+// so nearly equal roots are separated as long as the polynomial's values can tell them
+// apart.
 //
 // Tolerances:
 //  * "p(x) is zero" means |p(x)| ≤ kZeroTolerance · Σ|c_i|·|x|^i, a few times the
@@ -51,19 +52,21 @@ class AscendingRoots {
     bool Next(double& root) { return Next(0, root); }
 
   private:
-    // One polynomial of the derivative chain with its walk state.
+    // One polynomial of the derivative chain with its walk state. Left uninitialised on
+    // construction (this runs once per ray and interval): the constructor writes c and
+    // degree, and Start the rest, before Next reads anything.
     struct Level {
-        double c[5] = {};
-        int degree = 0;
-        double hi = 0;
-        bool done = true;
+        double c[5];
+        int degree;
+        double hi;
+        bool done;
         // Degree ≤ 2: the closed-form roots in [lo, hi] and the next one to hand out.
-        double closed[2] = {};
-        int nClosed = 0, iClosed = 0;
+        double closed[2];
+        int nClosed, iClosed;
         // Degree ≥ 3: the last break reached and p there (0 when within rounding error),
         // and whether that zero still has to be reported as a root.
-        double x0 = 0, v0 = 0;
-        bool pendingZero = false;
+        double x0, v0;
+        bool pendingZero;
     };
 
     static void Start(Level& level, double lo, double hi);
@@ -72,7 +75,7 @@ class AscendingRoots {
 
     static constexpr int kMaxLevels = 3;  // p, p′, p″: a quartic's chain ends at p″
     Level levels_[kMaxLevels];
-    int nLevels_ = 0;
+    int nLevels_;
 };
 
 // False when Σ coeffs[i]·x^i (ascending powers, degree ≤ 4) provably keeps one strict sign on

@@ -40,6 +40,26 @@ Bounds3 Torus::Bounds() const {
     return {ring.lo - r, ring.hi + r};
 }
 
+namespace {
+
+// Whether the ray enters (part 0) or leaves (part 1) the solid at the root σ of its quartic
+// p (ascending coefficients c): f < 0 inside the tube and p′(σ) = e·∇f, so it enters where
+// p′(σ) < 0, the same test as Primitive::Enters (d·Ng < 0, Ng along ∇f) makes with the
+// normal. Where |p′(σ)| is below 10⁻⁴ of the size Σ i·|c_i|·σ^(i−1) of its terms, the ray is
+// close enough to tangent that the two computations might disagree in sign; part −1 then
+// leaves the answer to the normal.
+int CrossingPart(const double* c, double sigma) {
+    double slope = 4 * c[4], scale = 4 * std::fabs(c[4]);
+    for (int i = 3; i >= 1; --i) {
+        slope = slope * sigma + i * c[i];
+        scale = scale * std::fabs(sigma) + i * std::fabs(c[i]);
+    }
+    if (!(std::fabs(slope) > 1e-4 * scale)) return -1;
+    return slope < 0 ? 0 : 1;
+}
+
+}  // namespace
+
 bool Torus::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const {
     const Vec3 o = frame_.ToCanonicalPoint(ray.origin);
     const Vec3 d = frame_.ToCanonicalVector(ray.dir);  // a rotation: same length as ray.dir
@@ -87,6 +107,7 @@ bool Torus::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hi
         if (t >= tMax) return false;
         if (t > tMin) {
             hit.t = t;
+            hit.part = CrossingPart(coeffs, sigma);
             return true;
         }
     }

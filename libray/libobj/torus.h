@@ -28,6 +28,11 @@ class Torus final : public Primitive {
     bool Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const override;
     // From the tube's centre circle to the hit point.
     SurfaceNormals Normal(const Vec3& p, const PrimitiveHit& hit) const override;
+    // Intersect records the crossing's direction in hit.part (0 enters, 1 leaves) unless
+    // the ray is nearly tangent there (−1: decided by the normal).
+    int EntersFromHit(const PrimitiveHit& hit) const override {
+        return hit.part < 0 ? -1 : hit.part == 0 ? 1 : 0;
+    }
     // Canonical q, ρ = |(q_x, q_y)|: u = acos(q_x/ρ)/(2π), 1 − u when q_y < 0;
     // v = acos(−(ρ − R)/r)/(2π), 1 − v when q_z > 0 (0 on the innermost ring, ½ on the
     // outer equator). ∂P/∂u, ∂P/∂v are the tangents of the two circles, directions of

@@ -86,5 +86,42 @@ TEST(Blob, TwoBallsHitWhereTheFieldEqualsTheThreshold) {
     EXPECT_GT(hits, 100);
 }
 
+TEST(Blob, GrazingRaysHitFromNearAndFarCameras) {
+    // Rays passing the centre at 1 − 10⁻⁶ of the surface radius: the field peaks only
+    // ~10⁻⁶ above the threshold along them, yet they must hit where the sphere says.
+    const Vec3 centre{0.25, -0.5, 0.75};
+    Blob blob = SingleBall(centre);
+    const double offset = kSurfaceRadius * (1 - 1e-6);
+    const double halfChord = std::sqrt(kSurfaceRadius * kSurfaceRadius - offset * offset);
+    for (double distance : {3.0, 1e2, 1e4, 1e6}) {
+        Ray ray{centre + Vec3{0, -distance, offset}, {0, 1, 0}, 0};
+        PrimitiveHit hit;
+        ASSERT_TRUE(blob.Intersect(ray, 1e-5, 1e14, hit)) << "distance " << distance;
+        EXPECT_NEAR(hit.t, distance - halfChord, 1e-6 * halfChord + 64 * distance * 2.2e-16)
+            << "distance " << distance;
+    }
+}
+
+TEST(Blob, GrazingRaysThroughTheSaddleOfTwoBalls) {
+    // Balls s = r = 1 at x = ±a, threshold T: on the plane x = 0 both are at ρ² = a² + y² + z²,
+    // so a ray along y at height z meets the surface where 2(1 − ρ²)² = T, i.e.
+    // y² = 1 − sqrt(T/2) − a² − z², and misses above z* = sqrt(1 − sqrt(T/2) − a²). Rays a
+    // relative 10⁻⁶ below z* hit (the field peaks only ~10⁻⁶ above T on them); rays as far
+    // above miss, so the field-bound rejection neither loses the one nor accepts the other.
+    constexpr double a = 0.45, kT = 0.6, kStart = 5;
+    Blob blob(kT, {{1, 1, {-a, 0, 0}}, {1, 1, {a, 0, 0}}});
+    const double reach2 = 1 - std::sqrt(kT / 2) - a * a;  // z*²
+    for (double relative : {1e-6, 1e-4, 1e-2}) {
+        const double below = std::sqrt(reach2) * (1 - relative);
+        Ray ray{{0, -kStart, below}, {0, 1, 0}, 0};
+        PrimitiveHit hit;
+        ASSERT_TRUE(blob.Intersect(ray, 1e-5, 1e14, hit)) << "relative " << relative;
+        EXPECT_NEAR(hit.t, kStart - std::sqrt(reach2 - below * below), 1e-8)
+            << "relative " << relative;
+        Ray above{{0, -kStart, std::sqrt(reach2) * (1 + relative)}, {0, 1, 0}, 0};
+        EXPECT_FALSE(blob.Intersect(above, 1e-5, 1e14, hit)) << "relative " << relative;
+    }
+}
+
 }  // namespace
 }  // namespace rs

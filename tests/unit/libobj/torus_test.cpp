@@ -69,6 +69,36 @@ TEST(Torus, RangeClippingVisitsLaterRoots) {
     EXPECT_LT(HitT(kTorus, ray, 1e-5, 2.5), 0);
 }
 
+TEST(Torus, HitRecordsWhetherTheRayEnters) {
+    // Along the x axis the ray enters the tube at t = 2.5 and 6.5 and leaves at 3.5 and 7.5.
+    const Ray ray{{-5, 0, 0}, {1, 0, 0}};
+    const double tMins[] = {1e-5, 3, 5, 7};
+    const bool enters[] = {true, false, true, false};
+    for (int i = 0; i < 4; ++i) {
+        const PrimitiveHit hit = MustHit(kTorus, ray, tMins[i]);
+        EXPECT_EQ(kTorus.EntersFromHit(hit), enters[i] ? 1 : 0) << "tMin " << tMins[i];
+    }
+    // The tangent ray of TangentRayFindsTheDoubleRoot: no trustworthy crossing direction.
+    EXPECT_EQ(kTorus.EntersFromHit(MustHit(kTorus, {{-5, 0, 0.5}, {1, 0, 0}})), -1);
+    // Wherever the hit decides, it agrees with the normal test, on a tilted torus too.
+    const Torus tilted(2, 0.5, {1, 2, 3}, {1, -1, 2});
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    int decided = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 origin = Vec3{1, 2, 3} + Vec3{4 * unit(rng), 4 * unit(rng), 4 * unit(rng)};
+        const Vec3 target = Vec3{1, 2, 3} + Vec3{2.5 * unit(rng), 2.5 * unit(rng), 2.5 * unit(rng)};
+        const Ray r{origin, target - origin};
+        PrimitiveHit hit;
+        if (!tilted.Intersect(r, 1e-5, 1e14, hit)) continue;
+        const int known = tilted.EntersFromHit(hit);
+        if (known < 0) continue;
+        ++decided;
+        EXPECT_EQ(known == 1, tilted.Enters(r, hit, tilted.Normal(r.At(hit.t), hit))) << i;
+    }
+    EXPECT_GT(decided, 500);
+}
+
 TEST(Torus, TangentRayFindsTheDoubleRoot) {
     // The plane z = r touches the torus along the circle ρ = R: a double root at x = −2.
     Ray ray{{-5, 0, 0.5}, {1, 0, 0}};
