@@ -140,6 +140,7 @@ bool LoadFrameState(const std::string& path, const std::string& fingerprint, Fra
     if (!r.Get(count) || count != pixelCount) return damaged();
     state.pixels.resize(count);
     for (PixelState& p : state.pixels) {
+        p = PixelState{};
         uint8_t flags = 0;
         if (!r.Get(p.r) || !r.Get(p.g) || !r.Get(p.b) || !r.Get(p.alpha) ||
             !r.Get(p.singleCell) || !r.Get(flags))

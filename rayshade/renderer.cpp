@@ -68,10 +68,10 @@ Renderer::Renderer(const Scene& scene, ProgressFn progress)
     threads_ = options_.threads > 0 ? options_.threads : static_cast<int>(hw ? hw : 1);
 }
 
-void Renderer::ParallelFor(long count, const std::function<void(long)>& body) const {
+void Renderer::RunParallel(long count, const std::function<void(long)>& body, bool stoppable) const {
     std::atomic<long> next{0};
     auto worker = [&] {
-        for (long i; !StopRequested() && (i = next.fetch_add(1)) < count;) body(i);
+        for (long i; !(stoppable && StopRequested()) && (i = next.fetch_add(1)) < count;) body(i);
     };
     int n = static_cast<int>(std::min<long>(threads_, std::max<long>(count, 1)));
     std::vector<std::thread> pool;
@@ -173,7 +173,10 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
         state.frame = frame;
         state.width = w;
         state.rows = rows;
-        state.pixels.assign(static_cast<size_t>(w) * rows, Pixel{});
+        state.pixels.resize(static_cast<size_t>(w) * rows);  // uninitialised (PixelState)
+        ParallelForAll(rows, [&](long y) {
+            std::fill_n(state.pixels.begin() + y * w, w, Pixel{});
+        });
     }
     auto& pixels = state.pixels;
     using Phase = FrameState::Phase;
@@ -299,9 +302,7 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
         }
     }
     if (progress_) progress_(totalWork, totalWork);
-    Image image = Encode(state, withAlpha);
-    safePoint();  // a stop during the encoding may have left rows unwritten
-    return image;
+    return Encode(state, withAlpha);
 }
 
 Image Renderer::Encode(const FrameState& state, bool withAlpha) const {
@@ -313,7 +314,7 @@ Image Renderer::Encode(const FrameState& state, bool withAlpha) const {
     image.height = h;
     image.channels = withAlpha ? 4 : 3;
     image.pixels.resize(static_cast<size_t>(w) * h * image.channels);
-    ParallelFor(h, [&](long y) {
+    ParallelForAll(h, [&](long y) {
         uint8_t* out = image.Row(static_cast<int>(y));
         for (int x = 0; x < w; ++x) {
             const Pixel& px = state.pixels[static_cast<size_t>(y) * w + x];

@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "libcommon/large_buffer.h"
@@ -38,16 +39,19 @@ using ProgressFn = std::function<void(long done, long total)>;
 // One pixel's state: its single sample until it is supersampled, then the filtered n×n
 // result (which reuses the single sample for its cell). Kept small (20 bytes): a frame holds
 // one per pixel. Single precision is plenty for values that end as 8-bit channels.
+// Trivially constructible, so a frame's states are allocated without a serial zeroing
+// pass: the renderer value-initialises them (PixelState{}, all zero) on its threads, and
+// the first touch of fresh memory, expensive on virtual machines, happens in parallel.
 struct PixelState {
-    float r = 0, g = 0, b = 0;
-    float alpha = 0;
-    int16_t singleCell = 0;
-    bool sampled : 1 = false;       // the single sample has been taken
-    bool supersampled : 1 = false;
+    float r, g, b;
+    float alpha;
+    int16_t singleCell;
+    bool sampled : 1;       // the single sample has been taken
+    bool supersampled : 1;
     // Work marks of the current refinement pass (contrast tested, queued for supersampling);
     // the renderer clears them before the next pass. Not part of the saved state.
-    bool tested : 1 = false;
-    bool queued : 1 = false;
+    bool tested : 1;
+    bool queued : 1;
 
     Color Value() const { return {r, g, b}; }
     // Values beyond float's range (a light of intensity 1e300) saturate at ±FLT_MAX instead of
@@ -62,6 +66,8 @@ struct PixelState {
         return static_cast<float>(v > kMax ? kMax : v < -kMax ? -kMax : v);
     }
 };
+
+static_assert(std::is_trivially_default_constructible_v<PixelState> && sizeof(PixelState) == 20);
 
 // Everything needed to continue a frame where it stopped; the renderer updates it as it
 // goes and hands it to the checkpoint callback. Continuing from a saved state gives the
@@ -109,7 +115,14 @@ class Renderer {
     Color SampleCell(int absX, int absY, int cell, Rng& rng, double& alpha) const;
     // Runs body(i) for i in [0, count) on the worker threads; stops handing out work when
     // a stop is requested.
-    void ParallelFor(long count, const std::function<void(long)>& body) const;
+    void ParallelFor(long count, const std::function<void(long)>& body) const {
+        RunParallel(count, body, true);
+    }
+    // The same, but always runs every i (work that must complete: initialisation, encoding).
+    void ParallelForAll(long count, const std::function<void(long)>& body) const {
+        RunParallel(count, body, false);
+    }
+    void RunParallel(long count, const std::function<void(long)>& body, bool stoppable) const;
     bool NeedsRefinement(const Pixel* pixels, int x, int y) const;
     Image Encode(const FrameState& state, bool withAlpha) const;
     const Scene& scene_;
