@@ -13,6 +13,9 @@ namespace {
 // Thrown inside this file to abandon the built-in path; PreprocessBuiltin turns it into
 // "no result".
 struct NeedsCpp {};
+// Thrown by Expand at the top level when the tokens end inside a function-like macro's
+// invocation (its arguments may continue on the next line).
+struct Incomplete {};
 
 // Deeper includes or macro-argument nesting go to cpp (which allows 200 include levels).
 constexpr int kMaxDepth = 64;
@@ -92,6 +95,37 @@ PpTokens Tokenize(std::string_view s) {
         i = j;
     }
     return out;
+}
+
+// Whether a line names one of `macros` (so it must be tokenized and expanded). Applies
+// Tokenize's checks, without building tokens: most lines of large scenes mention none.
+template <class Macros>
+bool MentionsMacro(std::string_view line, const Macros& macros) {
+    for (size_t i = 0; i < line.size();) {
+        const char c = line[i];
+        if (c == '"' || c == '\'') throw NeedsCpp{};
+        if (IsDigit(c) || (c == '.' && i + 1 < line.size() && IsDigit(line[i + 1]))) {
+            // A pp-number: its letters are not an identifier (as in Tokenize).
+            for (++i; i < line.size(); ++i) {
+                const char d = line[i], before = line[i - 1];
+                const bool exponentSign = (d == '+' || d == '-') && (before == 'e' || before == 'E' ||
+                                                                     before == 'p' || before == 'P');
+                if (!IsIdentifierChar(d) && d != '.' && !exponentSign) break;
+            }
+            continue;
+        }
+        if (!IsIdentifierStart(c)) {
+            ++i;
+            continue;
+        }
+        size_t j = i + 1;
+        while (j < line.size() && IsIdentifierChar(line[j])) ++j;
+        const std::string_view word = line.substr(i, j - i);
+        if (IsPredefinedByCpp(word)) throw NeedsCpp{};
+        if (macros.find(word) != macros.end()) return true;
+        i = j;
+    }
+    return false;
 }
 
 // Replaces each comment by a blank followed by the newlines it contained, so every line
@@ -252,6 +286,7 @@ PpTokens Preprocessor::Expand(const PpTokens& in, std::vector<std::string>& disa
             size_t j = i + 1;
             for (; j < in.size() && (in[j].kind == PpKind::Blank || in[j].kind == PpKind::Newline); ++j)
                 newlines += in[j].kind == PpKind::Newline;
+            if (j == in.size() && depth == 0) throw Incomplete{};
             if (j == in.size() || in[j].text != "(") throw NeedsCpp{};
             std::vector<PpTokens> args(1);
             int nesting = 1;
@@ -270,7 +305,10 @@ PpTokens Preprocessor::Expand(const PpTokens& in, std::vector<std::string>& disa
                 }
                 args.back().push_back(t);
             }
-            if (j == in.size()) throw NeedsCpp{};  // runs into a directive or the end
+            if (j == in.size()) {
+                if (depth == 0) throw Incomplete{};
+                throw NeedsCpp{};
+            }
             last = j;
             for (PpTokens& a : args) a = TrimBlankTokens(std::move(a));
             const bool noArguments = macro.params.empty() && args.size() == 1 && args[0].empty();
@@ -323,11 +361,18 @@ std::string Preprocessor::Run(std::string_view text, const std::string& fileName
     auto active = [&] { return groups.empty() || groups.back().Active(); };
 
     std::string out;
-    PpTokens pending;  // text lines since the last directive
-    auto flush = [&] {
+    PpTokens pending;  // text lines whose macros are not expanded yet
+    // Expands and emits the pending lines; at a directive or the end of the file
+    // (`final`) an invocation still open goes to cpp, otherwise it waits for more lines.
+    auto flush = [&](bool final) {
         std::vector<std::string> disabled;
         const size_t before = out.size();
-        for (const PpToken& t : Expand(pending, disabled, 0)) out += t.text;
+        try {
+            for (const PpToken& t : Expand(pending, disabled, 0)) out += t.text;
+        } catch (const Incomplete&) {
+            if (final) throw NeedsCpp{};
+            return;
+        }
         pending.clear();
         CountWork(out.size() - before);
     };
@@ -342,16 +387,20 @@ std::string Preprocessor::Run(std::string_view text, const std::string& fileName
 
         std::string_view rest = TrimBlanks(line);
         if (rest.empty() || rest[0] != '#') {
-            if (active()) {
+            if (active() && pending.empty() && !MentionsMacro(line, macros_)) {
+                out.append(line);
+                out += '\n';
+            } else if (active()) {
                 PpTokens tokens = Tokenize(line);
                 pending.insert(pending.end(), tokens.begin(), tokens.end());
                 pending.push_back({PpKind::Newline, "\n"});
+                flush(false);
             } else {
                 out += '\n';
             }
             continue;
         }
-        flush();
+        flush(true);
         rest.remove_prefix(1);
         const std::string_view directive = TakeIdentifier(rest);
         rest = TrimBlanks(rest);
@@ -405,7 +454,7 @@ std::string Preprocessor::Run(std::string_view text, const std::string& fileName
         }
         if (!lastLine) out += '\n';
     }
-    flush();
+    flush(true);
     if (!groups.empty()) throw NeedsCpp{};  // cpp reports the unterminated group
     return out;
 }

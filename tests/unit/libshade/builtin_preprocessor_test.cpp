@@ -91,6 +91,7 @@ TEST(BuiltinPreprocessor, MatchesCppOnMacrosConditionalsAndIncludes) {
         "#define LACUNARITY\t2.\n#define OCTAVES 6\ntexture fbm 0 1 .3 LACUNARITY OCTAVES -.2\n",
         "#define P /usr/u/img/x.rle\nimage P map planar\n(P)\n",
         "#define S(r) sphere r 0 0 0\n#define T S(1) S(2)\nT T\n",
+        "#define F(x) scale x\nplain line\nF\n(2) F (\n3\n) after\nplain 2\n",
     };
     int n = 0;
     for (const char* text : texts) ExpectSameAsCpp(dir.Write(std::to_string(n++) + ".ray", text));
