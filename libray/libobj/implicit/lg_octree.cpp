@@ -84,13 +84,17 @@ class RaySearch {
           tolT_(fixedTolT_),
           floorT_(fixedFloorT_) {}
 
-    double G(double t) const { return tree_.GetField().Value(ray_.At(t)) - tree_.Threshold(); }
+    // g at ray parameter t of the current leaf span, summing its active terms only.
+    double G(double t) const {
+        return tree_.GetField().Value(ray_.At(t), terms_) - tree_.Threshold();
+    }
 
     // Searches one leaf span; true when an accepted root was found (in result).
     bool Leaf(const LeafSpan& span) {
         Count(Counters().cellsVisited);
         double a = span.tEnter, b = span.tExit;
         if (!(b >= a)) return false;
+        terms_ = span.terms;
         if (adaptive_) {
             // The footprint is affine in t, so its smaller end value is its minimum here.
             const double width = std::min(ray_.footprintWidth + ray_.footprintSpread * a,
@@ -185,7 +189,7 @@ class RaySearch {
         }
         double m = 0.5 * (a + b);
         if ((s_.useTest3 || (s_.useTest2bis && !signChange)) && std::isfinite(gt)) {
-            double slope = Dot(tree_.GetField().Gradient(ray_.At(m)), ray_.dir);
+            double slope = Dot(tree_.GetField().Gradient(ray_.At(m), terms_), ray_.dir);
             if (std::abs(slope) > gt * lambda / 2) {
                 if (!signChange) {
                     Count(Counters().monotoneNoRoot);
@@ -212,6 +216,9 @@ class RaySearch {
     bool adaptive_;                   // automatic accuracy on a ray with a footprint
     double tolT_, floorT_;            // those of the current leaf span
     double cachedT_ = std::nan(""), cachedG_ = 0;
+    // The current leaf's active terms. A cached end value computed with the previous
+    // leaf's list is still exact: both lists hold every term non-zero at the shared end.
+    std::span<const int32_t> terms_;
 };
 
 }  // namespace
@@ -315,23 +322,27 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     LatticeTable().Clear();
     // Build into this thread's reusable arrays (no regrowth per tree), then keep copies of
     // exactly the nodes built (no spare capacity).
+    const Vec3 extent = box_.Extent();
+    leafPadding_ = kLeafBoxPadding * std::max({extent.x, extent.y, extent.z});
     thread_local std::vector<Internal> internalScratch;
     thread_local std::vector<Leaf> leafScratch;
+    thread_local std::vector<int32_t> termScratch;
     internalScratch.clear();
     leafScratch.clear();
+    termScratch.clear();
     internals_.swap(internalScratch);
     leaves_.swap(leafScratch);
+    terms_.swap(termScratch);
     root_ = Build(box_, 0, {0, 0, 0});
     internals_.swap(internalScratch);
     leaves_.swap(leafScratch);
+    terms_.swap(termScratch);
     internals_.assign(internalScratch.begin(), internalScratch.end());
     leaves_.assign(leafScratch.begin(), leafScratch.end());
+    terms_.assign(termScratch.begin(), termScratch.end());
     std::vector<TermValueRange>().swap(termRanges_);
     ExtendLeafBox(root_, box_);
-    if (!leafBox_.IsEmpty()) {
-        const Vec3 extent = box_.Extent();
-        leafBox_ = leafBox_.Padded(kLeafBoxPadding * std::max({extent.x, extent.y, extent.z}));
-    }
+    if (!leafBox_.IsEmpty()) leafBox_ = leafBox_.Padded(leafPadding_);
     if (degraded_) {
         Report(Severity::Warn, {},
                "implicit octree: memory budget of %zu bytes reached; some cells stop above "
@@ -341,7 +352,8 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
 }
 
 std::size_t LGOctree::MemoryBytes() const {
-    return internals_.size() * sizeof(Internal) + leaves_.size() * sizeof(Leaf);
+    return internals_.size() * sizeof(Internal) + leaves_.size() * sizeof(Leaf) +
+           terms_.size() * sizeof(int32_t);
 }
 
 // False when some other term's smallest value over the box exceeds the own term's largest
@@ -369,8 +381,20 @@ bool LGOctree::OwnExcluded(const Bounds3& box) const {
     return false;
 }
 
-LGOctree::Ref LGOctree::MakeLeaf(double L, double G) {
-    leaves_.push_back({L, G});
+LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G) {
+    std::size_t first = terms_.size();
+    field_.ActiveTerms(box.Padded(leafPadding_), terms_);
+    const std::size_t count = terms_.size() - first;
+    if (!leaves_.empty()) {
+        const Leaf& previous = leaves_.back();
+        const auto previousTerms = terms_.begin() + previous.firstTerm;
+        if (previous.termCount == count &&
+            std::equal(previousTerms, previousTerms + count, terms_.begin() + first)) {
+            terms_.resize(first);
+            first = previous.firstTerm;
+        }
+    }
+    leaves_.push_back({L, G, static_cast<uint32_t>(first), static_cast<uint32_t>(count)});
     return kFirstLeafRef - static_cast<Ref>(leaves_.size() - 1);
 }
 
@@ -430,7 +454,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     }
     if (depth >= s.maxDepth) {
         Count(c.h2Fired);
-        return MakeLeaf(fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G);
     }
     // Heuristics 3 and 3bis stop early only where G is finite: a leaf with infinite G would
     // leave the search no curvature bound at all.
@@ -446,22 +470,24 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
             }
             if (anyIn && anyOut) {
                 Count(c.h3Fired);
-                return MakeLeaf(fb.L, fb.G);
+                return MakeLeaf(box, fb.L, fb.G);
             }
         }
         if (s.useHeuristic3bis && fb.minDistance > 0 && b / fb.minDistance < s.dRatio) {
             Count(c.h3bisFired);
-            return MakeLeaf(fb.L, fb.G);
+            return MakeLeaf(box, fb.L, fb.G);
         }
     }
     if (MemoryBytes() + sizeof(Internal) + 8 * sizeof(Leaf) > s.memoryBudget) {
         Count(c.budgetFired);
         degraded_ = true;
-        return MakeLeaf(fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G);
     }
     // Subdivide. Children's nodes are allocated after this point, so a merge below can
-    // release them by truncating both arrays (stack-like allocation).
-    std::size_t internalMark = internals_.size(), leafMark = leaves_.size();
+    // release them by truncating the three arrays (stack-like allocation; a leaf shares only
+    // lists made before it, so truncated lists serve only truncated leaves).
+    std::size_t internalMark = internals_.size(), leafMark = leaves_.size(),
+                termMark = terms_.size();
     Internal node;
     for (int i = 0; i < 8; ++i) {
         LatticePoint q{low.x + ((i & 1) ? half : 0), low.y + ((i & 2) ? half : 0),
@@ -480,13 +506,15 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
         Count(c.h4Fired);
         internals_.resize(internalMark);
         leaves_.resize(leafMark);
+        terms_.resize(termMark);
         return allEmpty ? kEmptyRef : kFullRef;
     }
     if (s.useHeuristic5 && allLeaves && maxChildG >= s.h5GRatio * fb.G) {
         Count(c.h5Fired);
         internals_.resize(internalMark);
         leaves_.resize(leafMark);
-        return MakeLeaf(fb.L, fb.G);
+        terms_.resize(termMark);
+        return MakeLeaf(box, fb.L, fb.G);
     }
     internals_.push_back(node);
     return static_cast<Ref>(internals_.size() - 1);
@@ -498,7 +526,8 @@ bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, dou
     if (ref == kEmptyRef || ref == kFullRef) return false;
     if (ref <= kFirstLeafRef) {
         const Leaf& leaf = leaves_[kFirstLeafRef - ref];
-        return visit(LeafSpan{t0, t1, leaf.L, leaf.G});
+        return visit(LeafSpan{t0, t1, leaf.L, leaf.G,
+                              {terms_.data() + leaf.firstTerm, leaf.termCount}});
     }
     const Internal& node = internals_[ref];
     // Split [t0, t1] where the ray crosses the three mid-planes; each piece lies in one
