@@ -82,6 +82,13 @@ Vec3 Field::Gradient(const Vec3& p, std::span<const int32_t> terms) const {
     return gradient;
 }
 
+double Field::ValueAndGradient(const Vec3& p, std::span<const int32_t> terms,
+                               Vec3& gradient) const {
+    double value;
+    Sum<true, true>(p, terms, &value, &gradient);
+    return value;
+}
+
 void Field::ActiveTerms(const Bounds3& box, std::vector<int32_t>& out) const {
     const int n = Size();
     for (int i = 0; i < n; ++i) {

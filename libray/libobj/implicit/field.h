@@ -90,6 +90,9 @@ class Field {
     // Value(p) and Gradient(p), at the cost of the listed terms only.
     double Value(const Vec3& p, std::span<const int32_t> terms) const;
     Vec3 Gradient(const Vec3& p, std::span<const int32_t> terms) const;
+    // Both at once (counted as one value and one gradient evaluation), sharing each term's
+    // distance; bit-identical to the two separate calls.
+    double ValueAndGradient(const Vec3& p, std::span<const int32_t> terms, Vec3& gradient) const;
     // Appends to `out`, in increasing order, every term whose support may meet the box (its
     // support box meets it and its distance range starts below R): every other term and its
     // gradient are exactly 0 at every point of the box.
@@ -106,7 +109,7 @@ class Field {
 
   private:
     // The sums of F (into *value) and ∇F (into *gradient) over the term indices `indices`
-    // yields, as selected.
+    // yields, as selected; one loop, so ValueAndGradient shares each term's distance.
     template <bool kValue, bool kGradient, class Indices>
     void Sum(const Vec3& p, const Indices& indices, double* value, Vec3* gradient) const;
     FieldBound BoundImpl(const Bounds3& box, std::vector<TermValueRange>* termRanges) const;

@@ -188,8 +188,16 @@ class RaySearch {
             }
         }
         double m = 0.5 * (a + b);
+        // g(m) comes with the gradient where that is evaluated (one pass over the terms; the
+        // split below needs it whenever the tests do not conclude).
+        double gm = 0;
+        bool haveGm = false;
         if ((s_.useTest3 || (s_.useTest2bis && !signChange)) && std::isfinite(gt)) {
-            double slope = Dot(tree_.GetField().Gradient(ray_.At(m), terms_), ray_.dir);
+            Vec3 gradient;
+            gm = tree_.GetField().ValueAndGradient(ray_.At(m), terms_, gradient) -
+                 tree_.Threshold();
+            haveGm = true;
+            double slope = Dot(gradient, ray_.dir);
             if (std::abs(slope) > gt * lambda / 2) {
                 if (!signChange) {
                     Count(Counters().monotoneNoRoot);
@@ -202,7 +210,7 @@ class RaySearch {
             }
         }
         Count(Counters().splits);
-        double gm = G(m);
+        if (!haveGm) gm = G(m);
         return Search(a, ga, m, gm, lt, gt) || Search(m, gm, b, gb, lt, gt);
     }
 
