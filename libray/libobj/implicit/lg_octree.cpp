@@ -1,6 +1,7 @@
 #include "libobj/implicit/lg_octree.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "libcommon/error.h"
@@ -303,6 +304,26 @@ LatticeValueTable& LatticeTable() {
     return table;
 }
 
+// Recent leaf term lists of the tree being built (LGOctree::MakeLeaf), by hash: a
+// direct-mapped cache per thread, like the lattice table.
+class LeafListCache {
+  public:
+    struct Entry {
+        uint32_t first, count;  // a range of the tree's term array; count kNone: unused
+    };
+    static constexpr uint32_t kNone = 0xffffffffu;
+    void Clear() { entries_.fill({0, kNone}); }
+    Entry& Slot(uint64_t hash) { return entries_[(hash ^ (hash >> 29)) % entries_.size()]; }
+
+  private:
+    std::array<Entry, 64> entries_;
+};
+
+LeafListCache& LeafLists() {
+    thread_local LeafListCache cache;
+    return cache;
+}
+
 }  // namespace
 
 OctreeSettings OctreeSettings::Kb89() {
@@ -337,6 +358,7 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     thread_local std::vector<int32_t> termScratch;
     internalScratch.clear();
     leafScratch.clear();
+    LeafLists().Clear();
     termScratch.clear();
     internals_.swap(internalScratch);
     leaves_.swap(leafScratch);
@@ -393,14 +415,21 @@ LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G) {
     std::size_t first = terms_.size();
     field_.ActiveTerms(box.Padded(leafPadding_), terms_);
     const std::size_t count = terms_.size() - first;
-    if (!leaves_.empty()) {
-        const Leaf& previous = leaves_.back();
-        const auto previousTerms = terms_.begin() + previous.firstTerm;
-        if (previous.termCount == count &&
-            std::equal(previousTerms, previousTerms + count, terms_.begin() + first)) {
-            terms_.resize(first);
-            first = previous.firstTerm;
-        }
+    // Share an equal list made before: look it up by a hash of the list in a small
+    // direct-mapped cache of recent lists. An entry may be stale (its range truncated by a
+    // merge, or since overwritten), so it is used only when its range exists and its
+    // entries are equal.
+    uint64_t hash = count;
+    for (std::size_t i = first; i < terms_.size(); ++i) {
+        hash = (hash ^ static_cast<uint64_t>(terms_[i])) * 0x100000001b3ULL;  // FNV-1a step
+    }
+    LeafListCache::Entry& cached = LeafLists().Slot(hash);
+    if (cached.count == count && cached.first + count <= first &&
+        std::equal(terms_.begin() + first, terms_.end(), terms_.begin() + cached.first)) {
+        terms_.resize(first);
+        first = cached.first;
+    } else {
+        cached = {static_cast<uint32_t>(first), static_cast<uint32_t>(count)};
     }
     leaves_.push_back({L, G, static_cast<uint32_t>(first), static_cast<uint32_t>(count)});
     return kFirstLeafRef - static_cast<Ref>(leaves_.size() - 1);

@@ -220,7 +220,7 @@ class LGOctree {
     double LatticeValue(const Vec3& p, LatticePoint q);
     bool OwnMayPredominate(const std::vector<TermValueRange>& ranges) const;
     // A leaf for cell `box`, with the active terms of the cell padded by leafPadding_
-    // (shared with the previous leaf's list when equal, as neighbouring leaves' often are).
+    // (shared with an equal list made before when the list cache finds one).
     Ref MakeLeaf(const Bounds3& box, double L, double G);
     // Extends leafBox_ by the cells of the leaves below `ref` (cell `box`).
     void ExtendLeafBox(Ref ref, const Bounds3& box);
