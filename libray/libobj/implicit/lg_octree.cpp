@@ -625,11 +625,12 @@ CellClass LGOctree::Classify(const Vec3& p) const {
 std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tMax,
                                           const std::function<bool(double)>& accept) const {
     if (LengthSquared(ray.dir) == 0 || !(tMax > tMin)) return std::nullopt;
-    if (box_.IsEmpty()) return std::nullopt;
+    // The leaf box first: most rays reaching a patch's box miss its leaves. A ray meeting
+    // the leaf box only outside the root box meets no leaf either way (leaves lie in it).
+    double l0 = tMin, l1 = tMax;
+    if (leafBox_.IsEmpty() || !leafBox_.ClipRay(ray, l0, l1)) return std::nullopt;
     double t0 = tMin, t1 = tMax;
     if (!box_.ClipRay(ray, t0, t1)) return std::nullopt;
-    double l0 = t0, l1 = t1;
-    if (leafBox_.IsEmpty() || !leafBox_.ClipRay(ray, l0, l1)) return std::nullopt;
     RaySearch search(*this, ray, tMin, tMax, accept);
     auto leaf = [&search](const LeafSpan& span) { return search.Leaf(span); };
     Visit(root_, box_, ray, t0, t1, leaf);
