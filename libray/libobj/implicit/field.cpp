@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <ranges>
 
 #include "libcommon/stats.h"
 
@@ -32,39 +33,69 @@ double Field::TermValue(int i, const Vec3& p) const {
     return t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
 }
 
-double Field::Value(const Vec3& p) const {
-    Count(FieldCounterIds().values);
+template <bool kValue, bool kGradient, class Indices>
+void Field::Sum(const Vec3& p, const Indices& indices, double* value, Vec3* gradient) const {
+    if constexpr (kValue) Count(FieldCounterIds().values);
+    if constexpr (kGradient) Count(FieldCounterIds().gradients);
     double sum = 0;
-    const int n = Size();
-    for (int i = 0; i < n; ++i) {
-        if (!MayReach(i, p)) continue;  // adds exactly 0
+    Vec3 g;
+    for (const int i : indices) {
+        if (!MayReach(i, p)) continue;  // the term and its gradient are exactly 0
         const FieldTerm& t = terms_[i];
         // Points, the commonest skeleton, without the variant dispatch (same arithmetic).
-        const auto* point = std::get_if<PointSkeleton>(&t.skeleton);
-        const double d = point ? Length(p - point->center) : SkeletonDistance(t.skeleton, p);
-        sum += t.weight * t.kernel.Value(d);
-    }
-    if (deformation_) sum += deformation_->Value(p);
-    return sum;
-}
-
-Vec3 Field::Gradient(const Vec3& p) const {
-    Count(FieldCounterIds().gradients);
-    Vec3 g;
-    const int n = Size();
-    for (int i = 0; i < n; ++i) {
-        if (!MayReach(i, p)) continue;
-        const FieldTerm& t = terms_[i];
-        // Points without the variant dispatch, as in Value (same arithmetic).
         const auto* point = std::get_if<PointSkeleton>(&t.skeleton);
         Vec3 closest;
         const double d = point ? Length(p - (closest = point->center))
                                : SkeletonDistance(t.skeleton, p, closest);
-        if (d <= 0 || d >= t.kernel.Radius()) continue;
-        g += (p - closest) * (t.weight * t.kernel.Derivative(d) / d);
+        if constexpr (kValue) sum += t.weight * t.kernel.Value(d);
+        if constexpr (kGradient) {
+            if (d > 0 && d < t.kernel.Radius()) {
+                g += (p - closest) * (t.weight * t.kernel.Derivative(d) / d);
+            }
+        }
     }
-    if (deformation_) g += deformation_->Gradient(p);
-    return g;
+    if constexpr (kValue) *value = deformation_ ? sum + deformation_->Value(p) : sum;
+    if constexpr (kGradient) *gradient = deformation_ ? g + deformation_->Gradient(p) : g;
+}
+
+double Field::Value(const Vec3& p) const {
+    double value;
+    Sum<true, false>(p, std::views::iota(0, Size()), &value, nullptr);
+    return value;
+}
+
+double Field::Value(const Vec3& p, std::span<const int32_t> terms) const {
+    double value;
+    Sum<true, false>(p, terms, &value, nullptr);
+    return value;
+}
+
+Vec3 Field::Gradient(const Vec3& p) const {
+    Vec3 gradient;
+    Sum<false, true>(p, std::views::iota(0, Size()), nullptr, &gradient);
+    return gradient;
+}
+
+Vec3 Field::Gradient(const Vec3& p, std::span<const int32_t> terms) const {
+    Vec3 gradient;
+    Sum<false, true>(p, terms, nullptr, &gradient);
+    return gradient;
+}
+
+double Field::ValueAndGradient(const Vec3& p, std::span<const int32_t> terms,
+                               Vec3& gradient) const {
+    double value;
+    Sum<true, true>(p, terms, &value, &gradient);
+    return value;
+}
+
+void Field::ActiveTerms(const Bounds3& box, std::vector<int32_t>& out) const {
+    const int n = Size();
+    for (int i = 0; i < n; ++i) {
+        if (!MayReach(i, box)) continue;
+        const FieldTerm& t = terms_[i];
+        if (SkeletonDistanceRange(t.skeleton, box).min < t.kernel.Radius()) out.push_back(i);
+    }
 }
 
 FieldBound Field::Bound(const Bounds3& box) const { return BoundImpl(box, nullptr); }

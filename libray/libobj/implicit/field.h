@@ -21,7 +21,9 @@
 // decided on them).
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -82,6 +84,19 @@ class Field {
     // terms at d_i = 0 contribute 0 (their gradient is 0 for the quadratic and blob kernels
     // and undefined for the linear one).
     Vec3 Gradient(const Vec3& p) const;
+    // Value and Gradient summing only the listed terms (indices in increasing order), for a
+    // list from ActiveTerms(box) with p in that box: the other terms are exactly 0 there, so
+    // the sums add the same numbers in the same order and the results are bit-identical to
+    // Value(p) and Gradient(p), at the cost of the listed terms only.
+    double Value(const Vec3& p, std::span<const int32_t> terms) const;
+    Vec3 Gradient(const Vec3& p, std::span<const int32_t> terms) const;
+    // Both at once (counted as one value and one gradient evaluation), sharing each term's
+    // distance; bit-identical to the two separate calls.
+    double ValueAndGradient(const Vec3& p, std::span<const int32_t> terms, Vec3& gradient) const;
+    // Appends to `out`, in increasing order, every term whose support may meet the box (its
+    // support box meets it and its distance range starts below R): every other term and its
+    // gradient are exactly 0 at every point of the box.
+    void ActiveTerms(const Bounds3& box, std::vector<int32_t>& out) const;
     FieldBound Bound(const Bounds3& box) const;
     // Bound, also storing in termRanges[i] the range [lo, hi] TermRange gives for term i
     // (the same numbers, computed once for both; termRanges is resized to Size()).
@@ -93,6 +108,10 @@ class Field {
     Bounds3 SupportBounds() const;
 
   private:
+    // The sums of F (into *value) and ∇F (into *gradient) over the term indices `indices`
+    // yields, as selected; one loop, so ValueAndGradient shares each term's distance.
+    template <bool kValue, bool kGradient, class Indices>
+    void Sum(const Vec3& p, const Indices& indices, double* value, Vec3* gradient) const;
     FieldBound BoundImpl(const Bounds3& box, std::vector<TermValueRange>* termRanges) const;
 
     // Whether p may lie in the support of term i: false only where d_i(p) >= R_i, so the

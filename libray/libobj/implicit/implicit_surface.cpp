@@ -720,16 +720,26 @@ bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, Primitive
         return true;
     }
     // Front-to-back BVH walk over the patch boxes, each clipped to (tMin, best) so nodes
-    // beyond the best hit so far are skipped.
+    // beyond the best hit so far are skipped. A node is clipped once, when its parent pushes
+    // it, and stacked with its entry parameter `near`: its clip to (tMin, best) with the
+    // smaller best at its turn succeeds exactly when near <= best (near does not depend on
+    // the far end, and the slab exits already passed near).
     double best = tMax;
     bool found = false;
-    int stack[64];
+    struct Entry {
+        int node;
+        double near;
+    };
+    Entry stack[64];
     int top = 0;
-    if (!bvh_.empty()) stack[top++] = 0;
-    while (top > 0) {
-        const BvhNode& node = bvh_[stack[--top]];
+    if (!bvh_.empty()) {
         double t0 = tMin, t1 = best;
-        if (!node.box.ClipRay(ray, t0, t1)) continue;
+        if (bvh_[0].box.ClipRay(ray, t0, t1)) stack[top++] = {0, t0};
+    }
+    while (top > 0) {
+        const Entry entry = stack[--top];
+        if (entry.near > best) continue;
+        const BvhNode& node = bvh_[entry.node];
         if (node.count > 0) {
             for (int i = node.first; i < node.first + node.count; ++i) {
                 int patch = bvhOrder_[i];
@@ -747,12 +757,17 @@ bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, Primitive
         int a = node.left, b = node.left + 1;
         double ta0 = tMin, ta1 = best, tb0 = tMin, tb1 = best;
         bool hitA = bvh_[a].box.ClipRay(ray, ta0, ta1), hitB = bvh_[b].box.ClipRay(ray, tb0, tb1);
-        if (hitA && hitB && tb0 < ta0) std::swap(a, b);
+        if (hitA && hitB && tb0 < ta0) {
+            std::swap(a, b);
+            std::swap(ta0, tb0);
+        }
         if (hitA && hitB) {
-            stack[top++] = b;
-            stack[top++] = a;
-        } else if (hitA || hitB) {
-            stack[top++] = hitA ? a : b;
+            stack[top++] = {b, tb0};
+            stack[top++] = {a, ta0};
+        } else if (hitA) {
+            stack[top++] = {a, ta0};
+        } else if (hitB) {
+            stack[top++] = {b, tb0};
         }
     }
     if (found) hit.t = best;

@@ -1,6 +1,7 @@
 #include "libobj/implicit/lg_octree.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "libcommon/error.h"
@@ -84,13 +85,17 @@ class RaySearch {
           tolT_(fixedTolT_),
           floorT_(fixedFloorT_) {}
 
-    double G(double t) const { return tree_.GetField().Value(ray_.At(t)) - tree_.Threshold(); }
+    // g at ray parameter t of the current leaf span, summing its active terms only.
+    double G(double t) const {
+        return tree_.GetField().Value(ray_.At(t), terms_) - tree_.Threshold();
+    }
 
     // Searches one leaf span; true when an accepted root was found (in result).
     bool Leaf(const LeafSpan& span) {
         Count(Counters().cellsVisited);
         double a = span.tEnter, b = span.tExit;
         if (!(b >= a)) return false;
+        terms_ = span.terms;
         if (adaptive_) {
             // The footprint is affine in t, so its smaller end value is its minimum here.
             const double width = std::min(ray_.footprintWidth + ray_.footprintSpread * a,
@@ -184,8 +189,16 @@ class RaySearch {
             }
         }
         double m = 0.5 * (a + b);
+        // g(m) comes with the gradient where that is evaluated (one pass over the terms; the
+        // split below needs it whenever the tests do not conclude).
+        double gm = 0;
+        bool haveGm = false;
         if ((s_.useTest3 || (s_.useTest2bis && !signChange)) && std::isfinite(gt)) {
-            double slope = Dot(tree_.GetField().Gradient(ray_.At(m)), ray_.dir);
+            Vec3 gradient;
+            gm = tree_.GetField().ValueAndGradient(ray_.At(m), terms_, gradient) -
+                 tree_.Threshold();
+            haveGm = true;
+            double slope = Dot(gradient, ray_.dir);
             if (std::abs(slope) > gt * lambda / 2) {
                 if (!signChange) {
                     Count(Counters().monotoneNoRoot);
@@ -198,7 +211,7 @@ class RaySearch {
             }
         }
         Count(Counters().splits);
-        double gm = G(m);
+        if (!haveGm) gm = G(m);
         return Search(a, ga, m, gm, lt, gt) || Search(m, gm, b, gb, lt, gt);
     }
 
@@ -212,6 +225,9 @@ class RaySearch {
     bool adaptive_;                   // automatic accuracy on a ray with a footprint
     double tolT_, floorT_;            // those of the current leaf span
     double cachedT_ = std::nan(""), cachedG_ = 0;
+    // The current leaf's active terms. A cached end value computed with the previous
+    // leaf's list is still exact: both lists hold every term non-zero at the shared end.
+    std::span<const int32_t> terms_;
 };
 
 }  // namespace
@@ -288,6 +304,26 @@ LatticeValueTable& LatticeTable() {
     return table;
 }
 
+// Recent leaf term lists of the tree being built (LGOctree::MakeLeaf), by hash: a
+// direct-mapped cache per thread, like the lattice table.
+class LeafListCache {
+  public:
+    struct Entry {
+        uint32_t first, count;  // a range of the tree's term array; count kNone: unused
+    };
+    static constexpr uint32_t kNone = 0xffffffffu;
+    void Clear() { entries_.fill({0, kNone}); }
+    Entry& Slot(uint64_t hash) { return entries_[(hash ^ (hash >> 29)) % entries_.size()]; }
+
+  private:
+    std::array<Entry, 64> entries_;
+};
+
+LeafListCache& LeafLists() {
+    thread_local LeafListCache cache;
+    return cache;
+}
+
 }  // namespace
 
 OctreeSettings OctreeSettings::Kb89() {
@@ -315,23 +351,28 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     LatticeTable().Clear();
     // Build into this thread's reusable arrays (no regrowth per tree), then keep copies of
     // exactly the nodes built (no spare capacity).
+    const Vec3 extent = box_.Extent();
+    leafPadding_ = kLeafBoxPadding * std::max({extent.x, extent.y, extent.z});
     thread_local std::vector<Internal> internalScratch;
     thread_local std::vector<Leaf> leafScratch;
+    thread_local std::vector<int32_t> termScratch;
     internalScratch.clear();
     leafScratch.clear();
+    LeafLists().Clear();
+    termScratch.clear();
     internals_.swap(internalScratch);
     leaves_.swap(leafScratch);
+    terms_.swap(termScratch);
     root_ = Build(box_, 0, {0, 0, 0});
     internals_.swap(internalScratch);
     leaves_.swap(leafScratch);
+    terms_.swap(termScratch);
     internals_.assign(internalScratch.begin(), internalScratch.end());
     leaves_.assign(leafScratch.begin(), leafScratch.end());
+    terms_.assign(termScratch.begin(), termScratch.end());
     std::vector<TermValueRange>().swap(termRanges_);
     ExtendLeafBox(root_, box_);
-    if (!leafBox_.IsEmpty()) {
-        const Vec3 extent = box_.Extent();
-        leafBox_ = leafBox_.Padded(kLeafBoxPadding * std::max({extent.x, extent.y, extent.z}));
-    }
+    if (!leafBox_.IsEmpty()) leafBox_ = leafBox_.Padded(leafPadding_);
     if (degraded_) {
         Report(Severity::Warn, {},
                "implicit octree: memory budget of %zu bytes reached; some cells stop above "
@@ -341,7 +382,8 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
 }
 
 std::size_t LGOctree::MemoryBytes() const {
-    return internals_.size() * sizeof(Internal) + leaves_.size() * sizeof(Leaf);
+    return internals_.size() * sizeof(Internal) + leaves_.size() * sizeof(Leaf) +
+           terms_.size() * sizeof(int32_t);
 }
 
 // False when some other term's smallest value over the box exceeds the own term's largest
@@ -369,8 +411,27 @@ bool LGOctree::OwnExcluded(const Bounds3& box) const {
     return false;
 }
 
-LGOctree::Ref LGOctree::MakeLeaf(double L, double G) {
-    leaves_.push_back({L, G});
+LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G) {
+    std::size_t first = terms_.size();
+    field_.ActiveTerms(box.Padded(leafPadding_), terms_);
+    const std::size_t count = terms_.size() - first;
+    // Share an equal list made before: look it up by a hash of the list in a small
+    // direct-mapped cache of recent lists. An entry may be stale (its range truncated by a
+    // merge, or since overwritten), so it is used only when its range exists and its
+    // entries are equal.
+    uint64_t hash = count;
+    for (std::size_t i = first; i < terms_.size(); ++i) {
+        hash = (hash ^ static_cast<uint64_t>(terms_[i])) * 0x100000001b3ULL;  // FNV-1a step
+    }
+    LeafListCache::Entry& cached = LeafLists().Slot(hash);
+    if (cached.count == count && cached.first + count <= first &&
+        std::equal(terms_.begin() + first, terms_.end(), terms_.begin() + cached.first)) {
+        terms_.resize(first);
+        first = cached.first;
+    } else {
+        cached = {static_cast<uint32_t>(first), static_cast<uint32_t>(count)};
+    }
+    leaves_.push_back({L, G, static_cast<uint32_t>(first), static_cast<uint32_t>(count)});
     return kFirstLeafRef - static_cast<Ref>(leaves_.size() - 1);
 }
 
@@ -430,7 +491,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     }
     if (depth >= s.maxDepth) {
         Count(c.h2Fired);
-        return MakeLeaf(fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G);
     }
     // Heuristics 3 and 3bis stop early only where G is finite: a leaf with infinite G would
     // leave the search no curvature bound at all.
@@ -446,22 +507,24 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
             }
             if (anyIn && anyOut) {
                 Count(c.h3Fired);
-                return MakeLeaf(fb.L, fb.G);
+                return MakeLeaf(box, fb.L, fb.G);
             }
         }
         if (s.useHeuristic3bis && fb.minDistance > 0 && b / fb.minDistance < s.dRatio) {
             Count(c.h3bisFired);
-            return MakeLeaf(fb.L, fb.G);
+            return MakeLeaf(box, fb.L, fb.G);
         }
     }
     if (MemoryBytes() + sizeof(Internal) + 8 * sizeof(Leaf) > s.memoryBudget) {
         Count(c.budgetFired);
         degraded_ = true;
-        return MakeLeaf(fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G);
     }
     // Subdivide. Children's nodes are allocated after this point, so a merge below can
-    // release them by truncating both arrays (stack-like allocation).
-    std::size_t internalMark = internals_.size(), leafMark = leaves_.size();
+    // release them by truncating the three arrays (stack-like allocation; a leaf shares only
+    // lists made before it, so truncated lists serve only truncated leaves).
+    std::size_t internalMark = internals_.size(), leafMark = leaves_.size(),
+                termMark = terms_.size();
     Internal node;
     for (int i = 0; i < 8; ++i) {
         LatticePoint q{low.x + ((i & 1) ? half : 0), low.y + ((i & 2) ? half : 0),
@@ -480,13 +543,15 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
         Count(c.h4Fired);
         internals_.resize(internalMark);
         leaves_.resize(leafMark);
+        terms_.resize(termMark);
         return allEmpty ? kEmptyRef : kFullRef;
     }
     if (s.useHeuristic5 && allLeaves && maxChildG >= s.h5GRatio * fb.G) {
         Count(c.h5Fired);
         internals_.resize(internalMark);
         leaves_.resize(leafMark);
-        return MakeLeaf(fb.L, fb.G);
+        terms_.resize(termMark);
+        return MakeLeaf(box, fb.L, fb.G);
     }
     internals_.push_back(node);
     return static_cast<Ref>(internals_.size() - 1);
@@ -498,7 +563,8 @@ bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, dou
     if (ref == kEmptyRef || ref == kFullRef) return false;
     if (ref <= kFirstLeafRef) {
         const Leaf& leaf = leaves_[kFirstLeafRef - ref];
-        return visit(LeafSpan{t0, t1, leaf.L, leaf.G});
+        return visit(LeafSpan{t0, t1, leaf.L, leaf.G,
+                              {terms_.data() + leaf.firstTerm, leaf.termCount}});
     }
     const Internal& node = internals_[ref];
     // Split [t0, t1] where the ray crosses the three mid-planes; each piece lies in one
@@ -559,11 +625,12 @@ CellClass LGOctree::Classify(const Vec3& p) const {
 std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tMax,
                                           const std::function<bool(double)>& accept) const {
     if (LengthSquared(ray.dir) == 0 || !(tMax > tMin)) return std::nullopt;
-    if (box_.IsEmpty()) return std::nullopt;
+    // The leaf box first: most rays reaching a patch's box miss its leaves. A ray meeting
+    // the leaf box only outside the root box meets no leaf either way (leaves lie in it).
+    double l0 = tMin, l1 = tMax;
+    if (leafBox_.IsEmpty() || !leafBox_.ClipRay(ray, l0, l1)) return std::nullopt;
     double t0 = tMin, t1 = tMax;
     if (!box_.ClipRay(ray, t0, t1)) return std::nullopt;
-    double l0 = t0, l1 = t1;
-    if (leafBox_.IsEmpty() || !leafBox_.ClipRay(ray, l0, l1)) return std::nullopt;
     RaySearch search(*this, ray, tMin, tMax, accept);
     auto leaf = [&search](const LeafSpan& span) { return search.Leaf(span); };
     Visit(root_, box_, ray, t0, t1, leaf);

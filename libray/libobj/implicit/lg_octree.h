@@ -27,7 +27,8 @@
 //   4      after subdivision: all eight children Full (or all Empty) → parent likewise.
 //   5      after subdivision: all children leaves and max child G >= h5GRatio·G → one
 //          leaf with the parent's L and G (still valid on every child).
-// Empty/Full cells take no memory (tagged child references); leaves store L and G.
+// Empty/Full cells take no memory (tagged child references); leaves store L, G and their
+// active terms (the terms not identically 0 in the cell), which the search sums alone.
 //
 // Per-leaf search over [tA, tB] (λ = tB − tA, gA, gB the end values, tm the midpoint), in
 // their sound forms (research note §4.2); each but 2 switchable:
@@ -65,6 +66,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "libcommon/constants.h"
@@ -96,9 +98,10 @@ struct OctreeSettings {
     bool useHeuristic5 = true;
     bool usePredominancePruning = true;  // the "patch" rule; needs an own term
     double h5GRatio = 0.9;  // "not too different": children keep >= 90 % of the parent's G
-    // Node memory per tree (internal nodes 32 bytes, leaves 16 bytes). A cell subdivides
-    // only while one more internal node and eight leaves fit, so the tree may overshoot the
-    // budget by at most that much (160 bytes) per level of the path being built.
+    // Node memory per tree (internal nodes 32 bytes, leaves 24 bytes plus 4 bytes per
+    // entry of their active-term lists). A cell subdivides only while one more internal
+    // node and eight leaves fit, lists not counted, so the tree may overshoot the budget by
+    // that much (224 bytes) plus eight lists per level of the path being built.
     std::size_t memoryBudget = static_cast<std::size_t>(Limits().octreeBytes);
 
     // Search. Root accuracy and splitting floor, as object-space distances.
@@ -133,10 +136,13 @@ struct OctreeSettings {
     static OctreeSettings Kb89();
 };
 
-// A leaf met by a ray: the parametric span [tEnter, tExit] and the leaf's bounds.
+// A leaf met by a ray: the parametric span [tEnter, tExit], the leaf's bounds and its
+// active terms (Field::ActiveTerms of the leaf cell padded by the tree's leaf padding: every
+// other term is exactly 0 on the ray piece, so sums over these give the full field's bits).
 struct LeafSpan {
     double tEnter = 0, tExit = 0;
     double L = 0, G = 0;
+    std::span<const int32_t> terms;
 };
 
 enum class CellClass { Empty, Full, Leaf };
@@ -195,8 +201,10 @@ class LGOctree {
     struct Internal {
         Ref child[8];
     };
+    // A leaf's bounds and its active terms, terms_[firstTerm, firstTerm + termCount).
     struct Leaf {
         double L, G;
+        uint32_t firstTerm, termCount;
     };
 
     // A cell's low corner on the lattice of corners and centres of the deepest cells: the
@@ -211,7 +219,9 @@ class LGOctree {
     // value is exactly what a fresh evaluation would return.
     double LatticeValue(const Vec3& p, LatticePoint q);
     bool OwnMayPredominate(const std::vector<TermValueRange>& ranges) const;
-    Ref MakeLeaf(double L, double G);
+    // A leaf for cell `box`, with the active terms of the cell padded by leafPadding_
+    // (shared with an equal list made before when the list cache finds one).
+    Ref MakeLeaf(const Bounds3& box, double L, double G);
     // Extends leafBox_ by the cells of the leaves below `ref` (cell `box`).
     void ExtendLeafBox(Ref ref, const Bounds3& box);
     // The leaves below `ref` (cell `box`) met by the ray within [t0, t1], in ray order.
@@ -231,9 +241,11 @@ class LGOctree {
     // no leaf: FirstRoot stops there, with the result a full walk would give.
     Bounds3 leafBox_;
     static constexpr double kLeafBoxPadding = 1e-6;
+    double leafPadding_ = 0;  // kLeafBoxPadding × the root box's longest edge
     OctreeSettings settings_;
     std::vector<Internal> internals_;
     std::vector<Leaf> leaves_;
+    std::vector<int32_t> terms_;  // the leaves' active-term lists
     Ref root_ = kEmptyRef;
     bool degraded_ = false;
     std::vector<TermValueRange> termRanges_;  // build scratch (Build's predominance test)
