@@ -1,5 +1,6 @@
 #include "rayshade/tracer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -269,7 +270,9 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
         Color transmitWeight = s.body * s.transp;
         if (AnyAbove(transmitWeight * weight, options_.cutoff)) {
             // Indices on each side: entering pushes the surface's medium, leaving pops it.
-            MediumStack inner = media;
+            MediumStack inner;  // a copy of the media in use (not of all kMaxMedia slots)
+            inner.size = media.size;
+            std::copy_n(media.media, media.size, inner.media);
             double fromIndex, toIndex, extinct;
             if (sp.entering) {
                 fromIndex = media.size ? media.media[media.size - 1].index : scene_.atmosphereIndex;
