@@ -1,6 +1,8 @@
 #include "rayshade/tracer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "libcommon/constants.h"
@@ -330,15 +332,27 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
         }
         if (previousEntering)
             c *= std::pow(previousExtinct, hit.t() - previousT - kEpsilon);
-        ShadingPoint sp = Evaluate(ray, hit, true, sample);
-        c *= sp.surface.body * sp.surface.transp;
+        // What the occluder passes on: its surface with textures applied and whether the ray
+        // enters it. A CSG hit carries the enter flag, and with no textures on its path the
+        // surface is the untextured one, so Evaluate (normals, transforms) is not needed.
+        const bool textured = std::any_of(hit.path, hit.path + hit.pathLength,
+                                          [](const Object* o) { return !o->textures.empty(); });
+        const Surface* surface = &UntexturedSurface(hit);
+        bool entering = hit.enterOverride == 1;
+        std::optional<ShadingPoint> sp;
+        if (textured || hit.enterOverride < 0) {
+            sp = Evaluate(ray, hit, true, sample);
+            surface = &sp->surface;
+            entering = sp->entering;
+        }
+        c *= surface->body * surface->transp;
         if (!c.AnyAbove(kEpsilon)) {
             Count(kShadowHits);
             return {};
         }
-        previousEntering = sp.entering;
+        previousEntering = entering;
         previousT = hit.t();
-        previousExtinct = sp.surface.extinct;
+        previousExtinct = surface->extinct;
         tMin = hit.t() + kShadowEpsilon;
     }
     Count(kShadowHits);
