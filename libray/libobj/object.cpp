@@ -6,9 +6,7 @@
 
 namespace rs {
 
-namespace {
-const CounterId kBoundsTests = RegisterCounter("bounding box tests");
-}
+const CounterId Object::kBoundsTests = RegisterCounter("bounding box tests");
 
 std::shared_ptr<Object> Object::MakePrimitive(std::shared_ptr<Primitive> p) {
     std::shared_ptr<Object> o(new Object(Kind::Primitive));
@@ -44,13 +42,7 @@ bool Object::IntersectGeneral(const Ray& rayParent, double tMin, double& tMax,
             return IntersectPrimitive(ray, tMin, tMax, hit);
         case Kind::Aggregate:
         case Kind::Instance: {
-            if (bounded_) {
-                // Pre-test the node's box (bounded_ is false for aggregates holding
-                // unbounded children, see PrepareFrame).
-                Count(kBoundsTests);
-                double t0 = tMin, t1 = tMax;
-                if (!boundsObject_.ClipRay(ray, t0, t1)) return false;
-            }
+            if (!BoxAdmits(ray, tMin, tMax)) return false;
             found = kind_ == Kind::Aggregate ? aggregate_->Intersect(ray, tMin, tMax, hit)
                                              : instanceOf_->Intersect(ray, tMin, tMax, hit);
             break;
