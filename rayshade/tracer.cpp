@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "libcommon/constants.h"
@@ -169,14 +170,13 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
     const Vec3 pPrimitive = rayPrimitive.At(hit.t());
     const SurfaceNormals normals = hit.primitive->Normal(pPrimitive, hit.prim);
 
-    ShadingPoint sp;
-    sp.surface = UntexturedSurface(hit);
-    sp.smooth = normals.smooth;
-
+    // The record is built only at the end, from finished parts: default-constructing it
+    // first would clear its whole Surface per hit just to overwrite it.
+    Surface surface = UntexturedSurface(hit);
     Vec3 n = normals.shading, ng = normals.geometric;
     if (lastTextured >= 0) {
         ApplyPathTextures(ray, hit, nodeTransforms, lastTextured, rayPrimitive, pPrimitive,
-                          normals.geometric, sample, sp.surface, n, ng);
+                          normals.geometric, sample, surface, n, ng);
     } else {
         for (int i = 0; i < hit.pathLength; ++i) {
             if (!nodeTransforms[i]) continue;
@@ -184,8 +184,6 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
             ng = Normalize(nodeTransforms[i]->ApplyNormal(ng));
         }
     }
-    sp.point = ray.At(hit.t());
-
     // Numerical guard, six finiteness tests per hit: a normal that overflowed or vanished
     // (extreme scale factors, degenerate geometry) must not carry NaN into the shading, so
     // the geometric normal falls back to facing the ray and the shading normal to it.
@@ -201,11 +199,13 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
     // Face the ray (double-sided shading). For interpolated normals the geometric normal
     // decides when the two disagree.
     double dn = Dot(ray.dir, n), dg = Dot(ray.dir, ng);
-    bool flip = (sp.smooth && ((dn > 0) != (dg > 0))) ? dg > 0 : dn > 0;
-    sp.entering = hit.enterOverride >= 0 ? hit.enterOverride == 1 : !flip;
-    sp.normal = flip ? -n : n;
-    sp.geometric = flip ? -ng : ng;
-    return sp;
+    bool flip = (normals.smooth && ((dn > 0) != (dg > 0))) ? dg > 0 : dn > 0;
+    return {.point = ray.At(hit.t()),
+            .normal = flip ? -n : n,
+            .geometric = flip ? -ng : ng,
+            .smooth = normals.smooth,
+            .entering = hit.enterOverride >= 0 ? hit.enterOverride == 1 : !flip,
+            .surface = surface};
 }
 
 Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
@@ -333,15 +333,27 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
         }
         if (previousEntering)
             c *= std::pow(previousExtinct, hit.t() - previousT - kEpsilon);
-        ShadingPoint sp = Evaluate(ray, hit, true, sample);
-        c *= sp.surface.body * sp.surface.transp;
+        // What the occluder passes on: its surface with textures applied and whether the ray
+        // enters it. A CSG hit carries the enter flag, and with no textures on its path the
+        // surface is the untextured one, so Evaluate (normals, transforms) is not needed.
+        const bool textured = std::any_of(hit.path, hit.path + hit.pathLength,
+                                          [](const Object* o) { return !o->textures.empty(); });
+        const Surface* surface = &UntexturedSurface(hit);
+        bool entering = hit.enterOverride == 1;
+        std::optional<ShadingPoint> sp;
+        if (textured || hit.enterOverride < 0) {
+            sp = Evaluate(ray, hit, true, sample);
+            surface = &sp->surface;
+            entering = sp->entering;
+        }
+        c *= surface->body * surface->transp;
         if (!c.AnyAbove(kEpsilon)) {
             Count(kShadowHits);
             return {};
         }
-        previousEntering = sp.entering;
+        previousEntering = entering;
         previousT = hit.t();
-        previousExtinct = sp.surface.extinct;
+        previousExtinct = surface->extinct;
         tMin = hit.t() + kShadowEpsilon;
     }
     Count(kShadowHits);

@@ -5,6 +5,8 @@
 
 namespace rs {
 
+class CsgWalk;
+
 class CsgAggregate final : public Aggregate {
   public:
     enum class Op { Union, Intersect, Difference };
@@ -25,6 +27,9 @@ class CsgAggregate final : public Aggregate {
     // The winner's record has enterOverride set (1 enter, 0 leave). Successive hits of one
     // operand are searched from kEpsilon past the previous one, so surfaces of an operand
     // closer together than kEpsilon along the ray are not resolved.
+    // An operand that is itself a CSG node with a CSG operand of its own (possibly behind
+    // instances with static transforms) is walked incrementally: its walk is resumed rather
+    // than restarted for each of its successive hits, with the same results as restarting.
     bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const override;
 
     // Union: box union (unbounded if either operand is); intersect: box intersection of the
@@ -34,8 +39,24 @@ class CsgAggregate final : public Aggregate {
     bool IsClosed() const override { return true; }
     void PrepareFrame(double frameTime, double shutter) override;
 
+    // How an operand reaches a CSG node: nodes[0] is the operand, each further node the
+    // target of the instance before it, and nodes[length - 1] the CSG node's own node; all
+    // transforms static. length 0: the operand is not walked incrementally.
+    struct OperandChain {
+        static constexpr int kMaxNodes = 8;
+        const Object* nodes[kMaxNodes];
+        int length = 0;
+        const CsgAggregate* csg = nullptr;
+    };
+
   private:
+    friend class CsgWalk;
+
+    static OperandChain ChainTo(const Object& operand);
+
     Op op_;
+    OperandChain chains_[2];
+    bool hasCsgOperand_ = false;  // an operand reaches a CSG node (chained or not)
     Bounds3 bounds_;
     bool bounded_ = false;
 };

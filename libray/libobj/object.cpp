@@ -6,9 +6,7 @@
 
 namespace rs {
 
-namespace {
-const CounterId kBoundsTests = RegisterCounter("bounding box tests");
-}
+const CounterId Object::kBoundsTests = RegisterCounter("bounding box tests");
 
 std::shared_ptr<Object> Object::MakePrimitive(std::shared_ptr<Primitive> p) {
     std::shared_ptr<Object> o(new Object(Kind::Primitive));
@@ -31,33 +29,28 @@ std::shared_ptr<Object> Object::MakeInstance(std::shared_ptr<Object> of) {
 
 bool Object::IntersectGeneral(const Ray& rayParent, double tMin, double& tMax,
                               HitRecord& hit) const {
-    Ray rayObject;
-    if (!parentFromObject.IsIdentity())
-        rayObject = parentFromObject.IsAnimated()
-                        ? parentFromObject.At(rayParent.time).InverseRay(rayParent)
-                        : parentFromObject.Static().InverseRay(rayParent);
-    const Ray& ray = parentFromObject.IsIdentity() ? rayParent : rayObject;
-    bool found = false;
-    switch (kind_) {
-        case Kind::Primitive:
-            // IntersectPrimitive adds this node to the path.
-            return IntersectPrimitive(ray, tMin, tMax, hit);
-        case Kind::Aggregate:
-        case Kind::Instance: {
-            if (bounded_) {
-                // Pre-test the node's box (bounded_ is false for aggregates holding
-                // unbounded children, see PrepareFrame).
-                Count(kBoundsTests);
-                double t0 = tMin, t1 = tMax;
-                if (!boundsObject_.ClipRay(ray, t0, t1)) return false;
-            }
-            found = kind_ == Kind::Aggregate ? aggregate_->Intersect(ray, tMin, tMax, hit)
-                                             : instanceOf_->Intersect(ray, tMin, tMax, hit);
-            break;
+    // The rest of the search with the ray in this node's object space. Called on the
+    // parent's ray itself when there is no transform, so no object-space Ray is built then.
+    const auto inObjectSpace = [&](const Ray& ray) {
+        bool found = false;
+        switch (kind_) {
+            case Kind::Primitive:
+                // IntersectPrimitive adds this node to the path.
+                return IntersectPrimitive(ray, tMin, tMax, hit);
+            case Kind::Aggregate:
+            case Kind::Instance:
+                if (!BoxAdmits(ray, tMin, tMax)) return false;
+                found = kind_ == Kind::Aggregate ? aggregate_->Intersect(ray, tMin, tMax, hit)
+                                                 : instanceOf_->Intersect(ray, tMin, tMax, hit);
+                break;
         }
-    }
-    if (found && hit.pathLength < HitRecord::kMaxPath) hit.path[hit.pathLength++] = this;
-    return found;
+        if (found && hit.pathLength < HitRecord::kMaxPath) hit.path[hit.pathLength++] = this;
+        return found;
+    };
+    if (parentFromObject.IsIdentity()) return inObjectSpace(rayParent);
+    return inObjectSpace(parentFromObject.IsAnimated()
+                             ? parentFromObject.At(rayParent.time).InverseRay(rayParent)
+                             : parentFromObject.Static().InverseRay(rayParent));
 }
 
 bool Object::IsClosed() const {

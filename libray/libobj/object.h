@@ -54,6 +54,15 @@ class Object {
     const Bounds3& BoundsInParent() const { return boundsInParent_; }
     bool IsBounded() const { return bounded_; }
     bool IsClosed() const;
+    // The box pre-test IntersectGeneral applies to an aggregate or instance node: false when
+    // the ray (in the node's object space) misses the node's box over (tMin, tMax). Always
+    // true for unbounded nodes.
+    bool BoxAdmits(const Ray& rayObject, double tMin, double tMax) const {
+        // bounded_ is false for aggregates holding unbounded children, see PrepareFrame.
+        if (!bounded_) return true;
+        Count(kBoundsTests);
+        return boundsObject_.ClipRay(rayObject, tMin, tMax);
+    }
 
     // Prepares this node and everything below it for a frame: lets primitives rebuild,
     // rebuilds aggregates, recomputes bounds. Safe to call more than once per frame on a
@@ -84,6 +93,8 @@ class Object {
         return true;
     }
     bool IntersectGeneral(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const;
+
+    static const CounterId kBoundsTests;
 
     Kind kind_;
     std::shared_ptr<Primitive> primitive_;

@@ -226,6 +226,37 @@ TEST(Csg, InstancedThroughTransforms) {
     ExpectCrossings(got, {{4, true}, {5.25, false}, {5.75, true}, {7, false}});
 }
 
+TEST(Csg, ResumedNestedWalkMatchesAFreshSearch) {
+    // An operand reaching, through a scaling instance, a CSG node with a CSG operand of its
+    // own is walked incrementally; behind a list the same operand is searched afresh for
+    // each hit. Both must give exactly the same crossings.
+    auto u = Csg(Op::Union, {Sphere({0, 0, 0}, 1), Sphere({1, 0, 0}, 1)});
+    auto d = Csg(Op::Difference, {u, Sphere({0.5, 0, 0}, 0.25)});
+    auto scaled = Object::MakeInstance(d);
+    scaled->parentFromObject.Append(*Transform::Scale({2, 2, 2}));
+    auto list = std::make_shared<ListAggregate>();
+    list->AddChild(scaled);
+    auto listed = Object::MakeAggregate(list);
+    // Along x the instance covers [−2, 0.5] ∪ [1.5, 4]; the hole removes [1, 2], so the
+    // instance's crossing at x = 1.5 is rejected and its walk resumed past it.
+    auto hole = Sphere({1.5, 0, 0}, 0.5);
+    auto resumed = Csg(Op::Difference, {scaled, hole});
+    auto fresh = Csg(Op::Difference, {listed, hole});
+    const Ray rays[] = {{{-10, 0, 0}, {1, 0, 0}},
+                        {{10, 0, 0}, {-1, 0, 0}},
+                        {{1.25, 0, 0}, {-1, 0, 0}},  // from inside the hole
+                        {{-10, 0.3, 0.2}, {1, 0, 0}}};
+    ExpectCrossings(Walk(*resumed, rays[0]), {{8, true}, {10.5, false}, {12, true}, {14, false}});
+    for (const Ray& ray : rays) {
+        const std::vector<Crossing> a = Walk(*resumed, ray), b = Walk(*fresh, ray);
+        ASSERT_EQ(a.size(), b.size());
+        for (size_t i = 0; i < a.size(); ++i) {
+            EXPECT_EQ(a[i].t, b[i].t) << "crossing " << i;
+            EXPECT_EQ(a[i].enters, b[i].enters) << "crossing " << i;
+        }
+    }
+}
+
 TEST(Csg, APrimitiveHitInFrontClearsTheOverride) {
     auto u = Csg(Op::Union, {Sphere({0, 0, 0}, 1), Sphere({1, 0, 0}, 1)});
     auto front = Sphere({-3, 0, 0}, 0.5);
