@@ -283,6 +283,9 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
                 for (long c = 0; c < static_cast<long>(pixels.size()); ++c)
                     if (excessive[c]) queueNeighbourhood(c);
             } else {
+                // The interior pixels around the ones just supersampled, each once. Their
+                // tests run in parallel (they only read); the queueing stays serial, in
+                // the list's order.
                 for (long t : state.todo)
                     for (long c : {t, t - 1, t + 1, t - w, t + w}) {
                         if (c < 0 || c >= static_cast<long>(pixels.size()) || !isInterior(c) ||
@@ -290,9 +293,17 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
                             continue;
                         pixels[c].tested = true;
                         tested.push_back(c);
-                        if (NeedsRefinement(pixels.data(), static_cast<int>(c % w), static_cast<int>(c / w)))
-                            queueNeighbourhood(c);
                     }
+                const long count = static_cast<long>(tested.size());
+                std::vector<uint8_t> flagged(tested.size());
+                constexpr long kChunk = 4096;  // tests per work item: a test is ~20 ns
+                ParallelForAll((count + kChunk - 1) / kChunk, [&](long k) {
+                    for (long i = k * kChunk; i < std::min(count, (k + 1) * kChunk); ++i)
+                        flagged[i] = NeedsRefinement(pixels.data(), static_cast<int>(tested[i] % w),
+                                                     static_cast<int>(tested[i] / w));
+                });
+                for (long i = 0; i < count; ++i)
+                    if (flagged[i]) queueNeighbourhood(tested[i]);
             }
             for (long c : tested) pixels[c].tested = false;
             for (long n : next) pixels[n].queued = false;
