@@ -63,21 +63,12 @@ Renderer::Renderer(const Scene& scene, ProgressFn progress)
                    ? scene.options.filterWidth
                    : (scene.options.filter == FilterKind::Gauss ? 1.8 : 1.0)),
       tracer_(scene),
-      progress_(std::move(progress)) {
-    unsigned hw = std::thread::hardware_concurrency();
-    threads_ = options_.threads > 0 ? options_.threads : static_cast<int>(hw ? hw : 1);
-}
+      progress_(std::move(progress)),
+      workers_(ThreadCount(scene.options)) {}
 
-void Renderer::RunParallel(long count, const std::function<void(long)>& body, bool stoppable) const {
-    std::atomic<long> next{0};
-    auto worker = [&] {
-        for (long i; !(stoppable && StopRequested()) && (i = next.fetch_add(1)) < count;) body(i);
-    };
-    int n = static_cast<int>(std::min<long>(threads_, std::max<long>(count, 1)));
-    std::vector<std::thread> pool;
-    for (int t = 1; t < n; ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
+int Renderer::ThreadCount(const RenderOptions& options) {
+    unsigned hw = std::thread::hardware_concurrency();
+    return options.threads > 0 ? options.threads : static_cast<int>(hw ? hw : 1);
 }
 
 Color Renderer::SampleCell(int absX, int absY, int cell, Rng& rng, double& alpha) const {

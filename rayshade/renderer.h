@@ -19,6 +19,7 @@
 #include "rayshade/camera.h"
 #include "rayshade/sampling.h"
 #include "rayshade/tracer.h"
+#include "rayshade/worker_pool.h"
 
 namespace rs {
 
@@ -116,13 +117,14 @@ class Renderer {
     // Runs body(i) for i in [0, count) on the worker threads; stops handing out work when
     // a stop is requested.
     void ParallelFor(long count, const std::function<void(long)>& body) const {
-        RunParallel(count, body, true);
+        workers_.Run(count, body, true);
     }
     // The same, but always runs every i (work that must complete: initialisation, encoding).
     void ParallelForAll(long count, const std::function<void(long)>& body) const {
-        RunParallel(count, body, false);
+        workers_.Run(count, body, false);
     }
-    void RunParallel(long count, const std::function<void(long)>& body, bool stoppable) const;
+    // -t N, or every core.
+    static int ThreadCount(const RenderOptions& options);
     bool NeedsRefinement(const Pixel* pixels, int x, int y) const;
     Image Encode(const FrameState& state, bool withAlpha) const;
     const Scene& scene_;
@@ -132,7 +134,7 @@ class Renderer {
     SamplingPattern pattern_;
     Tracer tracer_;
     ProgressFn progress_;
-    int threads_;
+    mutable WorkerPool workers_;  // runs the const rendering loops
     int frame_ = 0;
     double frameTime_ = 0;
 };
