@@ -263,16 +263,17 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
             };
             if (state.pass == 0) {
                 // Every interior pixel is tested: the tests run in parallel by rows (they
-                // only read), the queueing of the flagged neighbourhoods stays serial.
-                std::vector<uint8_t, LargeBufferAllocator<uint8_t>> excessive(pixels.size(), 0);
+                // only read) and list each row's flagged columns; the queueing of their
+                // neighbourhoods stays serial, in pixel order.
+                std::vector<std::vector<int>> flaggedColumns(h);
                 ParallelFor(h - 1, [&](long i) {
                     const int y = static_cast<int>(i) + 1;
-                    uint8_t* row = excessive.data() + static_cast<long>(y) * w;
-                    for (int x = 1; x < w - 1; ++x) row[x] = NeedsRefinement(pixels.data(), x, y);
+                    for (int x = 1; x < w - 1; ++x)
+                        if (NeedsRefinement(pixels.data(), x, y)) flaggedColumns[y].push_back(x);
                 });
                 safePoint();  // a stop cuts the tests short: save the state from before them
-                for (long c = 0; c < static_cast<long>(pixels.size()); ++c)
-                    if (excessive[c]) queueNeighbourhood(c);
+                for (int y = 1; y < h; ++y)
+                    for (int x : flaggedColumns[y]) queueNeighbourhood(static_cast<long>(y) * w + x);
             } else {
                 // The interior pixels around the ones just supersampled, each once. Their
                 // tests run in parallel (they only read); the queueing stays serial, in
