@@ -1,5 +1,7 @@
 #include "rayshade/worker_pool.h"
 
+#include <exception>
+
 #include "rayshade/renderer.h"
 
 namespace rs {
@@ -51,10 +53,20 @@ void WorkerPool::Run(long count, const std::function<void(long)>& body, bool sto
         }
     }
     if (helped) loopStarted_.notify_all();
-    Work();
-    if (!helped) return;
-    std::unique_lock<std::mutex> lock(mutex_);
-    loopFinished_.wait(lock, [&] { return busyHelpers_ == 0; });
+    // An exception from body on this thread ends the loop, but only after the helpers have
+    // left it (they use `body`). On a helper thread it terminates, as in any std::thread.
+    std::exception_ptr failure;
+    try {
+        Work();
+    } catch (...) {
+        failure = std::current_exception();
+        next_.store(count);  // hand out no more indices
+    }
+    if (helped) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        loopFinished_.wait(lock, [&] { return busyHelpers_ == 0; });
+    }
+    if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace rs

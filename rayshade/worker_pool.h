@@ -23,8 +23,9 @@ class WorkerPool {
 
     // Runs body(i) for i in [0, count) on all workers, handing out indices in increasing
     // order, and returns when every started call has returned. When `stoppable`, no new
-    // index is handed out once StopRequested() (renderer.h) is true. Not re-entrant: one
-    // loop at a time, from one thread.
+    // index is handed out once StopRequested() (renderer.h) is true. An exception thrown
+    // by body on the calling thread is rethrown once the helpers have finished. Not
+    // re-entrant: one loop at a time, from one thread.
     void Run(long count, const std::function<void(long)>& body, bool stoppable);
 
   private:
