@@ -241,7 +241,8 @@ int Run(int argc, char** argv) {
                 rs::Report(Severity::Abort, {}, "cannot write the image to standard output");
         } else {
             std::string name = o.frames > 1 ? FrameFileName(o.outFile, f) : o.outFile;
-            if (!rs::WriteImage(name, image, error)) rs::Report(Severity::Abort, {}, "%s", error.c_str());
+            if (!rs::WriteImage(name, image, error, rs::Renderer::ThreadCount(scene.options)))
+                rs::Report(Severity::Abort, {}, "%s", error.c_str());
             std::remove(partialPath.c_str());  // the frame is complete
         }
     }

@@ -108,6 +108,9 @@ class Renderer {
                       FrameState* resumeFrom = nullptr, CheckpointFn checkpoint = {},
                       double checkpointSeconds = 10);
 
+    // The number of threads a render uses: -t N, or every core.
+    static int ThreadCount(const RenderOptions& options);
+
   private:
     using Pixel = PixelState;
 
@@ -123,8 +126,6 @@ class Renderer {
     void ParallelForAll(long count, const std::function<void(long)>& body) const {
         workers_.Run(count, body, false);
     }
-    // -t N, or every core.
-    static int ThreadCount(const RenderOptions& options);
     bool NeedsRefinement(const Pixel* pixels, int x, int y) const;
     Image Encode(const FrameState& state, bool withAlpha) const;
     const Scene& scene_;

@@ -22,8 +22,10 @@ inline constexpr int64_t kMaxImagePixels = int64_t{1} << 28;
 std::optional<Image> DecodePng(std::FILE* file, const std::string& path, std::string& error);
 
 // Writes `image` (already validated: 1–4 channels, consistent sizes) as an 8-bit,
-// non-interlaced PNG of the matching colour type (grey, grey+alpha, RGB, RGBA).
-bool EncodePng(std::FILE* file, const Image& image, const std::string& path, std::string& error);
+// non-interlaced PNG of the matching colour type (grey, grey+alpha, RGB, RGBA), compressing
+// on up to `threads` threads.
+bool EncodePng(std::FILE* file, const Image& image, const std::string& path, std::string& error,
+               int threads);
 
 // Decodes an mtv stream: an ASCII header "width height" (decimal, separated by spaces or tabs)
 // ended by exactly one '\n', then width×height RGB triples, top row first. Bytes after the

@@ -120,7 +120,7 @@ std::optional<Image> ReadImage(const std::string& path, std::string& error) {
     return DecodeMtv(file.get(), path, error);
 }
 
-bool WriteImage(const std::string& path, const Image& image, std::string& error) {
+bool WriteImage(const std::string& path, const Image& image, std::string& error, int threads) {
     const int64_t pixelCount = int64_t{image.width} * image.height;
     if (image.width < 1 || image.height < 1 || image.channels < 1 || image.channels > 4 ||
         pixelCount > kMaxImagePixels ||
@@ -139,7 +139,7 @@ bool WriteImage(const std::string& path, const Image& image, std::string& error)
             error = path + ": write error: " + std::strerror(errno);
             return false;
         }
-    } else if (!EncodePng(temp.File(), image, path, error)) {
+    } else if (!EncodePng(temp.File(), image, path, error, threads)) {
         return false;
     }
     return temp.Commit(path, error);

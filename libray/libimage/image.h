@@ -30,8 +30,9 @@ std::optional<Image> ReadImage(const std::string& path, std::string& error);
 
 // Writes `image` to `path`: mtv when the name ends in ".mtv", else PNG. The data goes to
 // a temporary file beside `path` that is renamed over it only when complete, so an
-// interrupted write never leaves a truncated image under the final name.
-bool WriteImage(const std::string& path, const Image& image, std::string& error);
+// interrupted write never leaves a truncated image under the final name. PNG data is
+// compressed on up to `threads` threads; the file does not depend on their number.
+bool WriteImage(const std::string& path, const Image& image, std::string& error, int threads = 1);
 
 // The mtv bytes of an image (RGB only), for the concatenated stream on stdout.
 std::vector<uint8_t> EncodeMtv(const Image& image);
