@@ -132,6 +132,7 @@ Bounds3 Transform::ApplyBounds(const Bounds3& b) const {
 
 void TransformList::Append(const Transform& step) {
     if (step.IsIdentity()) return;
+    prepared_ = false;
     if (!steps_.empty() && !steps_.back().animated) {
         steps_.back().fixed = steps_.back().fixed.Then(step);
     } else {
@@ -141,6 +142,7 @@ void TransformList::Append(const Transform& step) {
 }
 
 void TransformList::AppendAnimated(AnimatedStep step) {
+    prepared_ = false;
     steps_.push_back({Transform{}, std::move(step)});
     animated_ = true;
 }
@@ -156,6 +158,7 @@ void TransformList::Append(const TransformList& other) {
 
 Transform TransformList::At(double time) const {
     if (!animated_) return composedStatic_;
+    if (prepared_ && time == preparedTime_) return preparedTransform_;
     Transform r;
     for (const Step& s : steps_) {
         if (s.animated) {
@@ -165,6 +168,14 @@ Transform TransformList::At(double time) const {
         }
     }
     return r;
+}
+
+void TransformList::PrepareAt(double time) {
+    if (!animated_) return;
+    prepared_ = false;  // At below must evaluate
+    preparedTransform_ = At(time);
+    preparedTime_ = time;
+    prepared_ = true;
 }
 
 }  // namespace rs

@@ -106,6 +106,11 @@ class TransformList {
     Transform At(double time) const;
     // The composed transform of a static list (requires !IsAnimated()).
     const Transform& Static() const { return composedStatic_; }
+    // Evaluates an animated list at `time` once and keeps the result, so that At(time) for
+    // that same time is a copy instead of an evaluation of every animated step (the
+    // renderer prepares each frame's start: without motion blur every ray has that time).
+    // Call it before rendering; At stays safe to call from any number of threads.
+    void PrepareAt(double time);
 
   private:
     struct Step {
@@ -115,6 +120,9 @@ class TransformList {
     std::vector<Step> steps_;
     Transform composedStatic_;
     bool animated_ = false;
+    bool prepared_ = false;
+    double preparedTime_ = 0;
+    Transform preparedTransform_;  // At(preparedTime_), when prepared_
 };
 
 }  // namespace rs

@@ -65,6 +65,7 @@ bool Object::IsClosed() const {
 void Object::PrepareFrame(double frameTime, double shutter) {
     if (preparedFor_ == frameTime) return;
     preparedFor_ = frameTime;
+    parentFromObject.PrepareAt(frameTime);
 
     switch (kind_) {
         case Kind::Primitive:

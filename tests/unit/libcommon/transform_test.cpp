@@ -69,6 +69,26 @@ TEST(TransformList, AnimatedStepEvaluatesAtTime) {
     ExpectNear(l.At(3).ApplyPoint({1, 0, 0}), {5, 0, 0});
 }
 
+TEST(TransformList, PreparedTimeIsEvaluatedOnceAndOtherTimesAsBefore) {
+    int evaluations = 0;
+    TransformList l;
+    l.Append(*Transform::Scale({2, 2, 2}));
+    l.AppendAnimated([&](double time) {
+        ++evaluations;
+        return std::optional<Transform>(Transform::Translate({time, 0, 0}));
+    });
+    l.PrepareAt(3);
+    EXPECT_EQ(evaluations, 1);
+    for (int i = 0; i < 5; ++i) ExpectNear(l.At(3).ApplyPoint({1, 0, 0}), {5, 0, 0});
+    EXPECT_EQ(evaluations, 1);  // the prepared time costs no evaluation
+    ExpectNear(l.At(4).ApplyPoint({1, 0, 0}), {6, 0, 0});
+    EXPECT_EQ(evaluations, 2);
+    // Appending a step drops the prepared transform.
+    l.Append(Transform::Translate({0, 1, 0}));
+    ExpectNear(l.At(3).ApplyPoint({1, 0, 0}), {5, 1, 0});
+    EXPECT_EQ(evaluations, 3);
+}
+
 TEST(Bounds, ClipRayHandlesAxisParallelDirections) {
     Bounds3 b({-1, -1, -1}, {1, 1, 1});
     Ray r{{0, 0, -5}, {0, 0, 2}, 0};
