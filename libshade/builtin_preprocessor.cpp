@@ -54,6 +54,22 @@ bool IsPredefinedByCpp(std::string_view word) {
            std::end(kCppPredefinedNames);
 }
 
+// A pp-number (C's preprocessing number: `1e5`, `.5`, `2x`) starts at s[i] when it is a digit,
+// or a '.' followed by one; PpNumberEnd is the index just past it. Its letters are never an
+// identifier, so they are never macro names.
+bool StartsPpNumber(std::string_view s, size_t i) {
+    return IsDigit(s[i]) || (s[i] == '.' && i + 1 < s.size() && IsDigit(s[i + 1]));
+}
+size_t PpNumberEnd(std::string_view s, size_t i) {
+    for (++i; i < s.size(); ++i) {
+        const char d = s[i], before = s[i - 1];
+        const bool exponentSign =
+            (d == '+' || d == '-') && (before == 'e' || before == 'E' || before == 'p' || before == 'P');
+        if (!IsIdentifierChar(d) && d != '.' && !exponentSign) break;
+    }
+    return i;
+}
+
 // Whether a token may stand next to a macro name or parameter: then cpp's spacing of the
 // expansion cannot join it to, or split it from, its neighbours in the scene language.
 bool IsSeparator(const PpToken& t) {
@@ -79,13 +95,8 @@ PpTokens Tokenize(std::string_view s) {
             const std::string_view word = s.substr(i, j - i);
             if (IsPredefinedByCpp(word)) throw NeedsCpp{};
             out.push_back({PpKind::Identifier, std::string(word)});
-        } else if (IsDigit(c) || (c == '.' && j < s.size() && IsDigit(s[j]))) {
-            for (; j < s.size(); ++j) {
-                const char d = s[j], before = s[j - 1];
-                const bool exponentSign = (d == '+' || d == '-') && (before == 'e' || before == 'E' ||
-                                                                     before == 'p' || before == 'P');
-                if (!IsIdentifierChar(d) && d != '.' && !exponentSign) break;
-            }
+        } else if (StartsPpNumber(s, i)) {
+            j = PpNumberEnd(s, i);
             out.push_back({PpKind::Other, std::string(s.substr(i, j - i))});
         } else if (c == '"' || c == '\'') {
             throw NeedsCpp{};
@@ -104,14 +115,8 @@ bool MentionsMacro(std::string_view line, const Macros& macros) {
     for (size_t i = 0; i < line.size();) {
         const char c = line[i];
         if (c == '"' || c == '\'') throw NeedsCpp{};
-        if (IsDigit(c) || (c == '.' && i + 1 < line.size() && IsDigit(line[i + 1]))) {
-            // A pp-number: its letters are not an identifier (as in Tokenize).
-            for (++i; i < line.size(); ++i) {
-                const char d = line[i], before = line[i - 1];
-                const bool exponentSign = (d == '+' || d == '-') && (before == 'e' || before == 'E' ||
-                                                                     before == 'p' || before == 'P');
-                if (!IsIdentifierChar(d) && d != '.' && !exponentSign) break;
-            }
+        if (StartsPpNumber(line, i)) {
+            i = PpNumberEnd(line, i);  // its letters are not an identifier (as in Tokenize)
             continue;
         }
         if (!IsIdentifierStart(c)) {
