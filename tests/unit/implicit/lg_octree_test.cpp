@@ -16,6 +16,15 @@ using testing::RandomPoint;
 using testing::RandomUnit;
 using testing::Uniform;
 
+// Eight point terms at random places in [-0.7, 0.7]^3, term i with kernel(i), weight 1.
+template <class KernelOf>
+std::vector<FieldTerm> RandomPointTerms(Rng& rng, KernelOf kernel) {
+    std::vector<FieldTerm> terms;
+    for (int i = 0; i < 8; ++i)
+        terms.push_back({"p", PointSkeleton{RandomPoint(rng, -0.7, 0.7)}, kernel(i), 1});
+    return terms;
+}
+
 // First t > tMin where the ray o + t·d meets the sphere (c, rho), or nothing.
 std::optional<double> SphereHit(const Ray& ray, const Vec3& c, double rho, double tMin) {
     Vec3 oc = ray.origin - c;
@@ -211,11 +220,7 @@ TEST(LGOctree, CellClassesAgreeWithSampling) {
 // root (patch trees, where the patch rule makes it much smaller than the patch box).
 TEST(LGOctree, LeafBoxHoldsEveryLeafCell) {
     Rng rng(7);
-    std::vector<FieldTerm> terms;
-    for (int i = 0; i < 8; ++i) {
-        terms.push_back({"p", PointSkeleton{RandomPoint(rng, -0.7, 0.7)}, Kernel::Blob(1, 0.9),
-                         1});
-    }
+    const std::vector<FieldTerm> terms = RandomPointTerms(rng, [](int) { return Kernel::Blob(1, 0.9); });
     int leafPoints = 0, missingRays = 0;
     for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
         LGOctree tree = BuildPatchOctree(patch, 0.6, OctreeSettings{});
@@ -246,12 +251,9 @@ TEST(LGOctree, LeafBoxHoldsEveryLeafCell) {
 // random small boxes), and it does fire.
 TEST(LGOctree, ExcludedBoxesHoldNoPredominantPoint) {
     Rng rng(11);
-    std::vector<FieldTerm> terms;
-    for (int i = 0; i < 8; ++i) {
-        terms.push_back({"p", PointSkeleton{RandomPoint(rng, -0.7, 0.7)},
-                         i % 2 ? Kernel::Blob(1, 0.9) : Kernel::GascuelQuadratic(0.35, 2.4, 0.9),
-                         1});
-    }
+    const std::vector<FieldTerm> terms = RandomPointTerms(rng, [](int i) {
+        return i % 2 ? Kernel::Blob(1, 0.9) : Kernel::GascuelQuadratic(0.35, 2.4, 0.9);
+    });
     int excluded = 0;
     for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
         LGOctree tree = BuildPatchOctree(patch, 0.6, OctreeSettings{});
@@ -271,11 +273,8 @@ TEST(LGOctree, ExcludedBoxesHoldNoPredominantPoint) {
 // Patch trees: a cell is Empty only where g < 0 or the own term cannot predominate.
 TEST(LGOctree, PatchRuleCellsHoldNoAcceptableRoot) {
     Rng rng(5);
-    std::vector<FieldTerm> terms;
-    for (int i = 0; i < 8; ++i) {
-        terms.push_back({"p", PointSkeleton{RandomPoint(rng, -0.7, 0.7)},
-                         Kernel::GascuelQuadratic(0.35, 2.4, 0.9), 1});
-    }
+    const std::vector<FieldTerm> terms =
+        RandomPointTerms(rng, [](int) { return Kernel::GascuelQuadratic(0.35, 2.4, 0.9); });
     int pruned = 0;
     for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
         LGOctree tree = BuildPatchOctree(patch, 1.0, OctreeSettings{});
