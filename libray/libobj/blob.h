@@ -3,7 +3,7 @@
 //
 // Intersection follows the original (clip the ray against every sphere of influence, sort
 // the boundaries, solve the quartic of each interval with a constant active set) without
-// its two precision defects (research note §8):
+// its two precision defects (research note §8), through MetaballSum (metaball_sum.h):
 //  * each interval's quartic is formed relative to the interval's start point, not the ray
 //    origin, so no digits are lost when the camera is far away;
 //  * every root of an interval is considered and the smallest one beyond tMin is taken,
@@ -14,36 +14,29 @@
 #include <vector>
 
 #include "libcommon/arg_reader.h"
+#include "libobj/metaball_sum.h"
 #include "libobj/primitive.h"
 
 namespace rs {
 
 class Blob final : public Primitive {
   public:
-    struct Ball {
-        double strength;
-        double radius;
-        Vec3 centre;
-    };
-
     // Requires at least one ball, every strength and radius ≥ ε.
-    Blob(double threshold, std::vector<Ball> balls);
+    Blob(double threshold, std::vector<Metaball> balls);
 
     static std::shared_ptr<Primitive> Create(ArgReader& args);
 
     const IntersectionCounters& Counters() const override;
-    Bounds3 Bounds() const override { return bounds_; }
+    Bounds3 Bounds() const override { return sum_.Bounds(); }
     bool IsClosed() const override { return true; }
     bool Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const override;
     SurfaceNormals Normal(const Vec3& p, const PrimitiveHit& hit) const override;
 
     // The field Σ s(1 − ρ²/r²)² at p (exposed for tests).
-    double Field(const Vec3& p) const;
+    double Field(const Vec3& p) const { return sum_.Value(p); }
 
   private:
-    double threshold_;
-    std::vector<Ball> balls_;
-    Bounds3 bounds_;
+    MetaballSum sum_;
 };
 
 }  // namespace rs

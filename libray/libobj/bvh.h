@@ -1,6 +1,7 @@
 // A bounding volume hierarchy over a set of boxes, used by `list` to test only the children
-// a ray can reach. The original tests every child of a list; the nearest hit is the same,
-// because every child whose box meets the remaining ray segment is still tested.
+// a ray can reach (the original tests every child of a list; the nearest hit is the same,
+// because every child whose box meets the remaining ray segment is still tested), and by
+// the metaball sums of `blob` and `method polynomial` (metaball_sum.h).
 #pragma once
 
 #include <cmath>
@@ -50,6 +51,27 @@ class BoundingVolumeHierarchy {
             stack[top++] = nearChild;
         }
         return found;
+    }
+
+    // Calls visit(i) for every item whose box contains p.
+    template <class Visit>
+    void VisitContaining(const Vec3& p, Visit&& visit) const {
+        if (nodes_.empty()) return;
+        int stack[64];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const Node& node = nodes_[stack[--top]];
+            if (!node.box.Contains(p)) continue;
+            if (node.count > 0) {
+                for (int i = 0; i < node.count; ++i) visit(items_[node.first + i]);
+                continue;
+            }
+            // Build halves the items at each level, so the stack never holds more than
+            // log2(items) + 2 < 64 entries.
+            stack[top++] = node.right;
+            stack[top++] = static_cast<int>(&node - nodes_.data()) + 1;
+        }
     }
 
   private:

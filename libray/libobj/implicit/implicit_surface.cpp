@@ -207,12 +207,17 @@ std::string ImplicitSurface::SetMethod(ImplicitMethod method) {
 
 std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) {
     if (overrides.method) {
-        const MethodEntry& entry = MethodEntryOf(*overrides.method);
+        const ImplicitMethod method =
+            *overrides.method == ImplicitMethod::Auto
+                ? ResolveAutoMethod(terms_, options_.blendMode == BlendMode::Explicit ||
+                                                !options_.contacts.empty())
+                : *overrides.method;
+        const MethodEntry& entry = MethodEntryOf(method);
         if (entry.check) {
             std::string error = entry.check(terms_);
             if (!error.empty()) return label_ + ": " + error;
         }
-        options_.method = *overrides.method;
+        options_.method = method;
         options_.octree = MethodSettings(options_.method, options_.octree, options_.patchesDRatio);
     }
     if (overrides.maxDepth) {
@@ -235,8 +240,8 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
 }
 
 std::string ImplicitSurface::PatchName(const PrimitiveHit& hit) const {
-    if (hit.part < 0 || hit.part >= static_cast<int>(patches_.size())) return {};
-    return terms_[patches_[hit.part].Own()].name;
+    if (hit.part < 0 || hit.part >= static_cast<int>(termOfPart_.size())) return {};
+    return terms_[termOfPart_[hit.part]].name;
 }
 
 namespace {
@@ -389,6 +394,13 @@ void ImplicitSurface::BuildStructures() {
     }
     trees_.reset();
     baseline_.reset();
+    partOfTerm_.assign(terms_.size(), -1);
+    termOfPart_.clear();
+    for (size_t i = 0; i < terms_.size(); ++i) {
+        if (!(terms_[i].weight > 0)) continue;
+        partOfTerm_[i] = static_cast<int>(termOfPart_.size());
+        termOfPart_.push_back(static_cast<int>(i));
+    }
     const double threshold = options_.threshold;
     if (const MethodEntry& entry = MethodEntryOf(options_.method); entry.create) {
         bounds_ = PositiveSupportBounds(whole_);
@@ -472,6 +484,7 @@ void ImplicitSurface::BuildBvh(int index, int first, int count) {
 std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     ImplicitOptions options;
     options.autoDepth = true;
+    options.method = ImplicitMethod::Auto;  // resolved once the terms are known
     bool autoTolerance = true;
     int maxDepth = options.octree.maxDepth;
     double dRatio = options.octree.dRatio, tolerance = options.octree.tolerance;
@@ -596,7 +609,8 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             }
         }
     }
-    if (!blends.empty() && options.method != ImplicitMethod::Patches) {
+    if (!blends.empty() && options.method != ImplicitMethod::Patches &&
+        options.method != ImplicitMethod::Auto) {
         args.Warn(StringPrintf("'blend' is ignored with 'method %s' (one field, everything "
                                "blends)",
                                ImplicitMethodName(options.method)));
@@ -624,7 +638,8 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
         if (!inContact) args.Warn("propagation of '" + p.name + "', which is in no contact");
         options.propagations.push_back({term, p.width, p.height});
     }
-    if (!contacts.empty() && options.method != ImplicitMethod::Patches) {
+    if (!contacts.empty() && options.method != ImplicitMethod::Patches &&
+        options.method != ImplicitMethod::Auto) {
         args.Warn(StringPrintf("'contact' is ignored with 'method %s' (one field, everything "
                                "blends)",
                                ImplicitMethodName(options.method)));
@@ -648,6 +663,9 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     if (!anyPositive) {
         args.Warn("implicit object without a skeleton of positive weight, discarded");
         return nullptr;
+    }
+    if (options.method == ImplicitMethod::Auto) {
+        options.method = ResolveAutoMethod(terms, !blends.empty() || !contacts.empty());
     }
     if (const MethodEntry& entry = MethodEntryOf(options.method); entry.check) {
         std::string error = entry.check(terms);
@@ -709,7 +727,8 @@ bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, Primitive
         std::optional<double> t = baseline_->FirstRoot(ray, tMin, tMax);
         if (!t) return false;
         hit.t = *t;
-        hit.part = -1;
+        const int term = baseline_->PredominantTerm(ray.At(*t));
+        hit.part = term >= 0 ? partOfTerm_[term] : -1;
         return true;
     }
     if (options_.method == ImplicitMethod::Kb89) {
@@ -777,7 +796,8 @@ bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, Primitive
 SurfaceNormals ImplicitSurface::Normal(const Vec3& p, const PrimitiveHit& hit) const {
     bool usePatch = hit.part >= 0 && hit.part < static_cast<int>(patches_.size());
     const Field& field = usePatch ? patches_[hit.part].GetField() : whole_;
-    Vec3 n = Normalize(-field.Gradient(p));
+    Vec3 n = Normalize(-(baseline_ && !usePatch ? baseline_->Gradient(whole_, p)
+                                                : field.Gradient(p)));
     if (LengthSquared(n) == 0) {
         // Zero gradient: point away from the dominant (or own) skeleton.
         int own = 0;

@@ -131,7 +131,9 @@ class ImplicitSurface final : public Primitive {
     // and the octree switches) and rebuilds once; an error as for SetMethod.
     std::string ApplyOverrides(const ImplicitOverrides& overrides);
     // The name of the skeleton owning the patch of a hit, or empty when the hit carries no
-    // patch (every method but patches: one field for the whole object).
+    // patch (kb89 and the baselines but polynomial: one field for the whole object, no
+    // predominance evaluated; polynomial reports the automatic patch of the predominant
+    // skeleton at the hit, the patch that method patches would report).
     std::string PatchName(const PrimitiveHit& hit) const;
     // "Implicit object N", the prefix of this object's statistics counters.
     const std::string& Label() const { return label_; }
@@ -191,6 +193,10 @@ class ImplicitSurface final : public Primitive {
     std::unique_ptr<IntersectionMethod> baseline_;
     std::vector<DeformedPatch> contacts_;
     Field whole_;                   // the plain sum (normals in single-octree mode)
+    // The automatic patch index of each term (its rank among the positive-weight terms,
+    // BuildPatches' order; −1 for the others), and the term owning each patch index: the
+    // parts of the baselines that report a predominant term.
+    std::vector<int> partOfTerm_, termOfPart_;
     Bounds3 bounds_;
     std::vector<BvhNode> bvh_;  // root at 0 when there are patches
     std::vector<int> bvhOrder_;

@@ -31,6 +31,12 @@ class IntersectionMethod {
   public:
     virtual ~IntersectionMethod() = default;
     virtual std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax) const = 0;
+    // ∇F at p for `field`, the plain sum this method searches (for the hit's normal);
+    // methods with a faster evaluation of the same sum override it.
+    virtual Vec3 Gradient(const Field& field, const Vec3& p) const { return field.Gradient(p); }
+    // The term whose contribution w·f(d) is largest at p (ties to the lowest index, as
+    // Patch::Predominates), or −1 when the method does not evaluate it.
+    virtual int PredominantTerm(const Vec3&) const { return -1; }
 };
 
 // The box of the supports of the positive-weight terms: F <= 0 < T outside it, so every

@@ -26,6 +26,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
         {ImplicitMethod::Segment, "segment", Make<SegmentMethod>, nullptr},
         {ImplicitMethod::Polynomial, "polynomial", Make<PolynomialMethod>, CheckPolynomialTerms},
         {ImplicitMethod::Exact, "exact", Make<ExactMethod>, nullptr},
+        {ImplicitMethod::Auto, "auto", nullptr, nullptr},
     };
     return registry;
 }
@@ -53,6 +54,11 @@ std::string ImplicitMethodNames() {
         names += e.name;
     }
     return names;
+}
+
+ImplicitMethod ResolveAutoMethod(const std::vector<FieldTerm>& terms, bool blendsOrContacts) {
+    return !blendsOrContacts && CheckPolynomialTerms(terms).empty() ? ImplicitMethod::Polynomial
+                                                                     : ImplicitMethod::Patches;
 }
 
 }  // namespace rs

@@ -4,27 +4,27 @@
 // libobj's polynomial solver (libobj/polynomial.h), which the pure-math target ray_implicit
 // cannot link.
 //
-// Terms: point skeletons with the blob kernel s(1 − r²/R²)² only (CheckPolynomialTerms).
-// Along the ray, |o + t·d − c|² is a quadratic in t, so each term is a quartic in t between
-// the entry and exit of its sphere of radius R; between consecutive entry/exit events the
-// set of active terms is fixed and F − T is one quartic. Each interval's quartic is formed
-// in the local parameter u = t − t_start with the ray origin moved to the interval start
-// (the fix for distant cameras of the research note §8: no O(t⁴) terms cancel), and its
-// roots in [0, t_end − t_start] come in ascending order from AscendingRoots; the first one
-// in (tMin, tMax) is the hit, whichever interval it is in (the fix of Rayshade's lost exits
-// for rays starting just outside, §8 "Defect 2").
+// Terms: point skeletons with the blob kernel s(1 − r²/R²)² only (CheckPolynomialTerms),
+// each a metaball of strength w·s (negative weights carve). The search is MetaballSum's
+// (libobj/metaball_sum.h, shared with the `blob` primitive): one quartic per interval
+// between the ray's entries into and exits from the spheres of radius R, formed with the
+// origin moved to the interval's start (no cancellation for distant cameras, research note
+// §8), the first root in (tMin, tMax) whichever interval it is in (no lost exits for rays
+// starting just outside, §8 "Defect 2"); the balls a ray meets come from a bounding volume
+// hierarchy, so a ray costs O(log N + k log k) for k balls met.
 //
 // Guarantee: the roots of each interval's quartic to the solver's accuracy (about 4 ulp of
 // u); a double root (tangency within the solver's rounding bound) is a hit. The `tolerance`
 // knob is not used. Non-guarantee: round-off in the quartic's coefficients (sums of terms of
 // size s) moves near-tangent roots by about the square root of the relative rounding, and
-// can create or remove tangent roots. Cost: one field evaluation is counted per interval.
+// can create or remove tangent roots. Cost: one field evaluation is counted per quartic.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "libobj/implicit/intersection_method.h"
+#include "libobj/metaball_sum.h"
 
 namespace rs {
 
@@ -37,11 +37,11 @@ class PolynomialMethod final : public IntersectionMethod {
     // The terms must pass CheckPolynomialTerms.
     PolynomialMethod(const Field& field, const MethodParams& params);
     std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax) const override;
+    Vec3 Gradient(const Field& field, const Vec3& p) const override;
+    int PredominantTerm(const Vec3& p) const override { return sum_.Predominant(p); }
 
   private:
-    const Field& field_;
-    double threshold_;
-    Bounds3 box_;
+    MetaballSum sum_;
 };
 
 }  // namespace rs

@@ -13,7 +13,7 @@ namespace {
 constexpr double kStrength = 1, kRadius = 1, kThreshold = 0.5;
 const double kSurfaceRadius = kRadius * std::sqrt(1 - std::sqrt(kThreshold / kStrength));
 
-Blob SingleBall(const Vec3& centre) { return Blob(kThreshold, {{kStrength, kRadius, centre}}); }
+Blob SingleBall(const Vec3& centre) { return Blob(kThreshold, {{centre, kRadius, kStrength}}); }
 
 // Nearest t > 0 where the ray o + t·d (unit d) meets the sphere |X − c| = R, offset b from
 // the centre line: t = D − sqrt(R² − b²) for a ray aimed past the centre at distance b.
@@ -69,7 +69,7 @@ TEST(Blob, NormalIsRadialOnASingleBall) {
 }
 
 TEST(Blob, TwoBallsHitWhereTheFieldEqualsTheThreshold) {
-    Blob blob(0.6, {{1, 1, {-0.45, 0, 0}}, {1, 1, {0.45, 0, 0}}});
+    Blob blob(0.6, {{{-0.45, 0, 0}, 1, 1}, {{0.45, 0, 0}, 1, 1}});
     Rng rng(5);
     int hits = 0;
     for (int i = 0; i < 500; ++i) {
@@ -109,7 +109,7 @@ TEST(Blob, GrazingRaysThroughTheSaddleOfTwoBalls) {
     // relative 10⁻⁶ below z* hit (the field peaks only ~10⁻⁶ above T on them); rays as far
     // above miss, so the field-bound rejection neither loses the one nor accepts the other.
     constexpr double a = 0.45, kT = 0.6, kStart = 5;
-    Blob blob(kT, {{1, 1, {-a, 0, 0}}, {1, 1, {a, 0, 0}}});
+    Blob blob(kT, {{{-a, 0, 0}, 1, 1}, {{a, 0, 0}, 1, 1}});
     const double reach2 = 1 - std::sqrt(kT / 2) - a * a;  // z*²
     for (double relative : {1e-6, 1e-4, 1e-2}) {
         const double below = std::sqrt(reach2) * (1 - relative);

@@ -212,14 +212,15 @@ TEST(ImplicitSurface, ManyPatchesMatchTheSingleOctree) {
 }
 
 // The blob kernel is Rayshade's metaball: point skeletons with `field blob s r` and the
-// same threshold trace the same surface as the `blob` primitive (closed-form quartics).
+// same threshold trace, with the LG octrees of method patches, the same surface as the
+// `blob` primitive (closed-form quartics).
 TEST(ImplicitSurface, BlobKernelMatchesTheBlobPrimitive) {
-    std::vector<Blob::Ball> balls{{1.0, 1.0, {0, 0, 0}}, {0.8, 0.7, {0.6, 0.2, 0}},
-                                  {1.5, 1.2, {-0.4, 0.5, 0.3}}, {0.6, 0.5, {0.2, -0.6, -0.3}}};
+    std::vector<Metaball> balls{{{0, 0, 0}, 1.0, 1.0}, {{0.6, 0.2, 0}, 0.7, 0.8},
+                                {{-0.4, 0.5, 0.3}, 1.2, 1.5}, {{0.2, -0.6, -0.3}, 0.5, 0.6}};
     Blob blob(0.5, balls);
-    std::string text = "threshold 0.5 ";
+    std::string text = "threshold 0.5 method patches ";
     for (size_t i = 0; i < balls.size(); ++i) {
-        const Blob::Ball& b = balls[i];
+        const Metaball& b = balls[i];
         text += StringPrintf("point b%zu %g %g %g field blob %g %g ", i, b.centre.x, b.centre.y,
                              b.centre.z, b.strength, b.radius);
     }
@@ -280,6 +281,46 @@ TEST(ImplicitSurface, MethodStatementSelectsTheBaselines) {
     ASSERT_TRUE(ImplicitSurface::Create(blended));
     ASSERT_EQ(blended.warnings.size(), 1u);
     EXPECT_NE(blended.warnings[0].find("'method sphere'"), std::string::npos);
+}
+
+// Without a method statement (or with `method auto`), blob-kernel points that all blend are
+// searched by polynomial, and its hits carry the automatic patch of the predominant skeleton:
+// the same surface and the same patch names as method patches on random rays.
+TEST(ImplicitSurface, AutoMethodIsPolynomialWithThePatchesOfMethodPatches) {
+    const std::string body = "threshold 0.5 field blob 1 1 point a -0.4 0 0 point b 0.45 0.1 0 "
+                             "point c 0 0.5 0.2 point d 0.1 -0.2 0.6 weight -0.3 ";
+    for (const char* method : {"", "method auto "}) {
+        auto automatic = Parse(body + method + "end");
+        auto patches = Parse(body + "method patches tolerance 1e-10 end");
+        ASSERT_TRUE(automatic && patches);
+        auto* a = dynamic_cast<ImplicitSurface*>(automatic.get());
+        auto* p = dynamic_cast<ImplicitSurface*>(patches.get());
+        EXPECT_EQ(a->Method(), ImplicitMethod::Polynomial) << method;
+        int hits = 0;
+        for (int i = 0; i < 400; ++i) {
+            double u = 0.37 * i, v = 0.11 * i;
+            Vec3 o{4 * std::cos(u) * std::cos(v), 4 * std::sin(u) * std::cos(v), 4 * std::sin(v)};
+            Vec3 target{0.5 * std::sin(1.3 * i), 0.4 * std::cos(2.1 * i), 0.3 * std::sin(0.7 * i)};
+            Ray ray{o, Normalize(target - o)};
+            PrimitiveHit ha, hp;
+            bool gotA = automatic->Intersect(ray, 1e-5, 1e9, ha);
+            ASSERT_EQ(gotA, patches->Intersect(ray, 1e-5, 1e9, hp)) << i;
+            if (!gotA) continue;
+            ++hits;
+            EXPECT_NEAR(ha.t, hp.t, 1e-8) << i;
+            EXPECT_EQ(a->PatchName(ha), p->PatchName(hp)) << i;
+            EXPECT_EQ(ha.part, hp.part) << i;
+        }
+        EXPECT_GT(hits, 150);
+    }
+    // Blend statements keep patches (only they honour them).
+    auto blended = Parse(body + "blend a b end");
+    ASSERT_TRUE(blended);
+    EXPECT_EQ(dynamic_cast<ImplicitSurface*>(blended.get())->Method(), ImplicitMethod::Patches);
+    // Other kernels too.
+    auto gascuel = Parse("field quadratic 0.5 2 1.2 point a 0 0 0 end");
+    ASSERT_TRUE(gascuel);
+    EXPECT_EQ(dynamic_cast<ImplicitSurface*>(gascuel.get())->Method(), ImplicitMethod::Patches);
 }
 
 TEST(ImplicitSurface, MethodErrors) {

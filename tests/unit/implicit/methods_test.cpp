@@ -200,12 +200,30 @@ TEST(ImplicitMethods, RegistryNamesRoundTrip) {
         ASSERT_TRUE(ParseImplicitMethod(e.name, m)) << e.name;
         EXPECT_EQ(m, e.method);
         EXPECT_STREQ(ImplicitMethodName(m), e.name);
-        bool octree = m == ImplicitMethod::Patches || m == ImplicitMethod::Kb89;
-        EXPECT_EQ(e.create == nullptr, octree) << e.name;
+        // No factory: the octree methods, and auto (a rule resolving to another method).
+        bool noFactory = m == ImplicitMethod::Patches || m == ImplicitMethod::Kb89 ||
+                         m == ImplicitMethod::Auto;
+        EXPECT_EQ(e.create == nullptr, noFactory) << e.name;
     }
     ImplicitMethod m;
     EXPECT_FALSE(ParseImplicitMethod("bisection", m));
-    EXPECT_EQ(ImplicitMethodNames(), "patches, kb89, march, sphere, segment, polynomial, exact");
+    EXPECT_EQ(ImplicitMethodNames(),
+              "patches, kb89, march, sphere, segment, polynomial, exact, auto");
+}
+
+// Auto runs polynomial exactly when it searches the surface patches would: every term a
+// blob-kernel point and no blend or contact statements.
+TEST(ImplicitMethods, AutoIsPolynomialOnlyForBlobPointsThatAllBlend) {
+    const std::vector<FieldTerm> blobs{{"a", PointSkeleton{{0, 0, 0}}, Kernel::Blob(1, 1), 1},
+                                       {"b", PointSkeleton{{1, 0, 0}}, Kernel::Blob(1, 1), -1}};
+    EXPECT_EQ(ResolveAutoMethod(blobs, false), ImplicitMethod::Polynomial);
+    EXPECT_EQ(ResolveAutoMethod(blobs, true), ImplicitMethod::Patches);
+    std::vector<FieldTerm> withSegment = blobs;
+    withSegment.push_back({"s", SegmentSkeleton{{0, 0, 0}, {1, 0, 0}}, Kernel::Blob(1, 1), 1});
+    EXPECT_EQ(ResolveAutoMethod(withSegment, false), ImplicitMethod::Patches);
+    std::vector<FieldTerm> withGascuel = blobs;
+    withGascuel.push_back({"g", PointSkeleton{{0, 0, 0}}, Kernel::GascuelQuadratic(0.5, 2, 1.2), 1});
+    EXPECT_EQ(ResolveAutoMethod(withGascuel, false), ImplicitMethod::Patches);
 }
 
 // The exact solver reports the double root of a ray tangent to the sphere (|b| = e exactly

@@ -16,7 +16,7 @@ bool IsUnit(const Vec3& v) { return IsFinite(v) && std::fabs(Length(v) - 1) < 1e
 // the surface when T = F(0) = 2(1 − a²)². Normal must still be a unit vector.
 TEST(FiniteNormals, BlobNormalAtAPinchPointIsAUnitVector) {
     const double a = std::sqrt(1 - 1 / std::sqrt(2.0));  // F(0) = 2(1 − a²)² = 1
-    Blob blob(1, {{1, 1, {-a, 0, 0}}, {1, 1, {a, 0, 0}}});
+    Blob blob(1, {{{-a, 0, 0}, 1, 1}, {{a, 0, 0}, 1, 1}});
     EXPECT_NEAR(blob.Field({0, 0, 0}), 1, 1e-12);
     const SurfaceNormals n = blob.Normal({0, 0, 0}, PrimitiveHit{});
     EXPECT_TRUE(IsUnit(n.shading));
@@ -25,7 +25,7 @@ TEST(FiniteNormals, BlobNormalAtAPinchPointIsAUnitVector) {
 
 // At a ball's centre the ball's own gradient vanishes (ρ = 0).
 TEST(FiniteNormals, BlobNormalAtACentreAndOutsideEveryBallIsAUnitVector) {
-    Blob blob(0.5, {{1, 1, {0, 0, 0}}});
+    Blob blob(0.5, {{{0, 0, 0}, 1, 1}});
     EXPECT_TRUE(IsUnit(blob.Normal({0, 0, 0}, PrimitiveHit{}).shading));
     EXPECT_TRUE(IsUnit(blob.Normal({5, 0, 0}, PrimitiveHit{}).shading));
 }
