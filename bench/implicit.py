@@ -3,7 +3,9 @@
 
 For each N the scene of ../shared/bench/povray (the same skeletons, camera, lights and
 finish) is rendered by rayshade at 512x512, one sample per pixel, shadows on, one thread,
-with `method patches` and `method kb89`, and by POV-Ray 3.7's `blob` (the same kernel,
+with `method auto` (the scene default: here polynomial, exact quartics per interval, since
+every skeleton is a blob-kernel point and all blend), `method patches` (the paper's LG
+octrees) and `method kb89`, and by POV-Ray 3.7's `blob` (the same kernel,
 s(1 - r^2/R^2)^2 with s = 1, R = 1, threshold 0.6). Printed per run: preprocessing time
 (patches, BVH and octree builds, from the object's statistics counter; octrees are built
 lazily during rendering, so this is CPU time that the render time includes), render wall
@@ -212,7 +214,8 @@ def main():
             pts = load_points(n)
             trace, traceCpu = (run_povray(pov_scene(pts), work, "snake_%d" % n) if pov
                                else (float("nan"), float("nan")))
-            for method in ("patches", "kb89") if n <= args.kb89_max else ("patches",):
+            methods = ("auto", "patches") + (("kb89",) if n <= args.kb89_max else ())
+            for method in methods:
                 r = run_rayshade(binary, rayshade_scene(pts, method, args.tolerance), work,
                                  "snake_%d_%s" % (n, method))
                 print("| %d | %s | %.3f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2f | %.2f | %.2f |"
