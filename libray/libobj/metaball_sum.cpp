@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "libobj/polynomial.h"
 
@@ -9,8 +10,24 @@ namespace rs {
 
 namespace {
 
-// Up to this many balls a plain loop finds the ones a ray meets faster than the hierarchy.
+// Up to this many balls a plain loop finds the ones a ray meets faster than a structure.
 constexpr size_t kLinearSearchMax = 8;
+
+// The grid has about kCellsPerBall cells per ball, at most kMaxGridCells, and is given up
+// for the hierarchy when its non-empty cells list more than kMaxMeanCellBalls balls on
+// average (the balls crowd into a small part of their box, so the cells a ray crosses
+// there would each cost that many tests; a few crowded cells, as where a chain coils up,
+// do not count much).
+constexpr double kCellsPerBall = 2;
+constexpr double kMaxGridCells = 1 << 22;
+constexpr double kMaxMeanCellBalls = 16;
+
+// Boxes are registered in the cells they overlap after padding by this fraction of the
+// grid's largest extent, so the cell the walk is in when the ray enters a ball always lists
+// it: the walk's cell boundaries and first point are rounded by a few ulp of the ray
+// origin's distance, below the padding for origins within 10⁹ grid extents (farther, the
+// quartics have lost their accuracy anyway: kFieldBoundMargin).
+constexpr double kGridPadding = 1e-6;
 
 // Relative margin of the field-bound rejections in FirstRoot. An interval's quartic is
 // formed from terms of size at most 81·|s| per active ball (|q_i| ≤ 1 and each of q_i's
@@ -39,8 +56,8 @@ struct Event {
 // Per-thread scratch of FirstRoot, so rays allocate nothing once it has grown.
 struct Scratch {
     std::vector<Span> spans;
-    std::vector<Event> events;
-    std::vector<int> active;  // indices into spans, in increasing ball index
+    std::vector<Event> events;  // a min-heap on t: the events not swept yet
+    std::vector<int> active;    // indices into spans, in increasing ball index
 };
 
 // The largest value of s·q² over [ta, tb] for a span, q = 1 − ρ²/r² ∈ [0, 1] being largest at
@@ -66,11 +83,79 @@ MetaballSum::MetaballSum(double threshold, std::vector<Metaball> balls) : thresh
         boxes.emplace_back(b.centre - r, b.centre + r);
         bounds_.Extend(boxes.back());
     }
-    if (balls_.size() > kLinearSearchMax) hierarchy_.Build(boxes);
+    if (balls_.size() <= kLinearSearchMax) return;
+    BuildGrid(boxes);
+    if (grid_.IsEmpty()) hierarchy_.Build(boxes);
+}
+
+int MetaballSum::Grid::CellOf(double x, int axis) const {
+    const double f = std::floor((x - lo[axis]) / cellSize[axis]);
+    return static_cast<int>(std::clamp(f, 0.0, static_cast<double>(n[axis] - 1)));
+}
+
+void MetaballSum::BuildGrid(const std::vector<Bounds3>& boxes) {
+    Grid grid;
+    const Vec3 extent = bounds_.Extent();
+    const double largest = std::max({extent.x, extent.y, extent.z});
+    // Cells as near cubes: flat directions get one cell.
+    const double cells = std::min(kCellsPerBall * static_cast<double>(boxes.size()), kMaxGridCells);
+    double volume = 1;
+    int axes = 0;
+    for (int a = 0; a < 3; ++a) {
+        if (extent[a] > 1e-6 * largest) {
+            volume *= extent[a];
+            ++axes;
+        }
+    }
+    const double edge = std::pow(volume / cells, 1.0 / axes);
+    for (int a = 0; a < 3; ++a) {
+        grid.n[a] = extent[a] > 1e-6 * largest
+                        ? std::clamp(static_cast<int>(extent[a] / edge), 1, 1 << 10)
+                        : 1;
+        grid.cellSize[a] = std::max(extent[a], 1e-300) / grid.n[a];
+    }
+    grid.lo = bounds_.lo;
+    const double pad = kGridPadding * largest;
+    // Count, then fill (compressed rows, balls in increasing index per cell).
+    const size_t cellCount = static_cast<size_t>(grid.n[0]) * grid.n[1] * grid.n[2];
+    grid.cellStart.assign(cellCount + 1, 0);
+    const auto forCells = [&](const Bounds3& box, auto&& visit) {
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = grid.CellOf(box.lo[a] - pad, a);
+            hi[a] = grid.CellOf(box.hi[a] + pad, a);
+        }
+        for (int z = lo[2]; z <= hi[2]; ++z)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int x = lo[0]; x <= hi[0]; ++x) visit(grid.Index(x, y, z));
+    };
+    for (const Bounds3& box : boxes) forCells(box, [&](int c) { ++grid.cellStart[c + 1]; });
+    size_t nonEmpty = 0;
+    for (size_t c = 0; c < cellCount; ++c) {
+        nonEmpty += grid.cellStart[c + 1] > 0;
+        grid.cellStart[c + 1] += grid.cellStart[c];
+    }
+    if (grid.cellStart[cellCount] > kMaxMeanCellBalls * static_cast<double>(nonEmpty)) {
+        return;  // crowded: the hierarchy instead
+    }
+    grid.cellBalls.resize(grid.cellStart[cellCount]);
+    std::vector<uint32_t> fill(grid.cellStart.begin(), grid.cellStart.end() - 1);
+    for (size_t i = 0; i < boxes.size(); ++i) {
+        forCells(boxes[i], [&](int c) { grid.cellBalls[fill[c]++] = static_cast<uint32_t>(i); });
+    }
+    grid_ = std::move(grid);
 }
 
 void MetaballSum::BallsAt(const Vec3& p, std::vector<int>& out) const {
     out.clear();
+    if (!grid_.IsEmpty()) {
+        if (!bounds_.Contains(p)) return;
+        const int c = grid_.Index(grid_.CellOf(p.x, 0), grid_.CellOf(p.y, 1), grid_.CellOf(p.z, 2));
+        for (uint32_t k = grid_.cellStart[c]; k < grid_.cellStart[c + 1]; ++k) {
+            out.push_back(static_cast<int>(grid_.cellBalls[k]));
+        }
+        return;
+    }
     if (hierarchy_.IsEmpty()) {
         for (size_t i = 0; i < balls_.size(); ++i) out.push_back(static_cast<int>(i));
         return;
@@ -86,49 +171,41 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
     if (!(dd > 0)) return std::nullopt;
     thread_local Scratch scratch;
     std::vector<Span>& spans = scratch.spans;
-    std::vector<Event>& events = scratch.events;
+    std::vector<Event>& pending = scratch.events;
     std::vector<int>& active = scratch.active;
     spans.clear();
-    events.clear();
+    pending.clear();
     active.clear();
+    const auto later = [](const Event& a, const Event& b) { return a.t > b.t; };
     double peakSum = 0, strengthSum = 0;  // over the balls met
 
-    // Adds ball i's span and events if its sphere of influence meets (tMin, tMax).
-    const auto addBall = [&](int i) {
+    // Ball i's span along (tMin, tMax), when its sphere of influence meets it.
+    const auto spanOf = [&](int i, Span& span) {
         const Ball& b = balls_[i];
         // |o + t d − c|² = r²: solved around the closest approach for stability.
         const Vec3 oc = ray.origin - b.centre;
         const double tClosest = -Dot(oc, ray.dir) / dd;
         const double dist2 = LengthSquared(oc + ray.dir * tClosest);
         const double h2 = (b.radius2 - dist2) / dd;
-        if (h2 <= 0) return;
+        if (h2 <= 0) return false;
         const double h = std::sqrt(h2);
-        const double t0 = std::max(tClosest - h, tMin), t1 = std::min(tClosest + h, tMax);
-        if (t0 >= t1) return;
+        span = {i, tClosest, dist2, std::max(tClosest - h, tMin), std::min(tClosest + h, tMax)};
+        return span.enter < span.exit;
+    };
+    const auto add = [&](const Span& span) {
         const int k = static_cast<int>(spans.size());
-        spans.push_back({i, tClosest, dist2, t0, t1});
-        events.push_back({t0, k, true});
-        events.push_back({t1, k, false});
+        spans.push_back(span);
+        pending.push_back({span.enter, k, true});
+        std::push_heap(pending.begin(), pending.end(), later);
+        pending.push_back({span.exit, k, false});
+        std::push_heap(pending.begin(), pending.end(), later);
+        const Ball& b = balls_[span.ball];
         if (b.strength > 0) {
-            const double q = 1 - dist2 / b.radius2;
+            const double q = 1 - span.dist2 / b.radius2;
             peakSum += b.strength * q * q;
         }
         strengthSum += std::abs(b.strength);
     };
-    if (hierarchy_.IsEmpty()) {
-        for (size_t i = 0; i < balls_.size(); ++i) addBall(static_cast<int>(i));
-    } else {
-        double segmentEnd = tMax;
-        hierarchy_.Traverse(ray, tMin, segmentEnd, [&](int i) {
-            addBall(i);
-            return false;  // collects every ball: the segment is not shortened
-        });
-    }
-    if (spans.empty()) return std::nullopt;
-    // Even every ball at its peak stays below the threshold: no root anywhere.
-    if (peakSum + kFieldBoundMargin * (threshold_ + strengthSum) < threshold_) {
-        return std::nullopt;
-    }
 
     // The first root in (tMin, tMax) of F − T on [ta, tb], where the active balls are fixed.
     const auto solve = [&](double ta, double tb) -> std::optional<double> {
@@ -168,24 +245,95 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
         return std::nullopt;
     };
 
-    std::sort(events.begin(), events.end(),
-              [](const Event& a, const Event& b) { return a.t < b.t; });
+    // Sweeps the pending events up to x, before which no unknown ball enters: every interval
+    // between two of them has its whole active set. Returns the root when one is found.
+    double cursor = 0;  // the last event swept; read only while some ball is active
     const auto byBall = [&spans](int k, int ball) { return spans[k].ball < ball; };
-    for (size_t e = 0; e + 1 < events.size(); ++e) {
-        const Event& event = events[e];
-        // Active balls in increasing index, the order of the quartic's sums.
-        const auto at =
-            std::lower_bound(active.begin(), active.end(), spans[event.span].ball, byBall);
-        if (event.entering) {
-            active.insert(at, event.span);
-        } else {
-            active.erase(at);
+    const auto sweepTo = [&](double x) -> std::optional<double> {
+        while (!pending.empty() && pending.front().t <= x) {
+            std::pop_heap(pending.begin(), pending.end(), later);
+            const Event event = pending.back();
+            pending.pop_back();
+            if (!active.empty() && event.t > cursor) {
+                if (std::optional<double> root = solve(cursor, event.t)) return root;
+            }
+            // Active balls in increasing index, the order of the quartic's sums.
+            const auto at =
+                std::lower_bound(active.begin(), active.end(), spans[event.span].ball, byBall);
+            if (event.entering) {
+                active.insert(at, event.span);
+            } else {
+                active.erase(at);
+            }
+            cursor = event.t;
         }
-        const double ta = event.t, tb = events[e + 1].t;
-        if (active.empty() || tb <= ta) continue;
-        if (std::optional<double> root = solve(ta, tb)) return root;
+        return std::nullopt;
+    };
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+    if (grid_.IsEmpty()) {
+        // Every ball the ray meets, then one sweep.
+        Span span;
+        const auto visit = [&](int i) {
+            if (spanOf(i, span)) add(span);
+        };
+        if (hierarchy_.IsEmpty()) {
+            for (size_t i = 0; i < balls_.size(); ++i) visit(static_cast<int>(i));
+        } else {
+            double segmentEnd = tMax;
+            hierarchy_.Traverse(ray, tMin, segmentEnd, [&](int i) {
+                visit(i);
+                return false;  // collects every ball: the segment is not shortened
+            });
+        }
+        if (spans.empty()) return std::nullopt;
+        // Even every ball at its peak stays below the threshold: no root anywhere.
+        if (peakSum + kFieldBoundMargin * (threshold_ + strengthSum) < threshold_) {
+            return std::nullopt;
+        }
+        return sweepTo(kInfinity);
     }
-    return std::nullopt;
+
+    // Grid walk. Cell k covers the parameters [entry_k, exit_k) of the ray (the first from
+    // −∞, the last to +∞, absorbing rounding at the grid's faces). A ball is added by the
+    // cell whose range holds its entry parameter, which lists it (its box, padded, overlaps
+    // the cell there): so once cell k is read, every ball entering before exit_k is known.
+    double t0 = tMin, t1 = tMax;
+    if (!bounds_.ClipRay(ray, t0, t1)) return std::nullopt;
+    int cell[3], step[3];
+    double next[3];  // the parameter of the next cell boundary along each axis
+    const Vec3 p0 = ray.At(t0);
+    for (int a = 0; a < 3; ++a) {
+        cell[a] = grid_.CellOf(p0[a], a);
+        step[a] = ray.dir[a] > 0 ? 1 : -1;
+    }
+    const auto boundary = [&](int a) {
+        if (ray.dir[a] == 0) return kInfinity;
+        const double plane = grid_.lo[a] + (cell[a] + (step[a] > 0)) * grid_.cellSize[a];
+        return (plane - ray.origin[a]) / ray.dir[a];
+    };
+    for (int a = 0; a < 3; ++a) next[a] = boundary(a);
+    double entry = -kInfinity;
+    for (;;) {
+        const int axis = next[0] <= next[1] ? (next[0] <= next[2] ? 0 : 2)
+                                            : (next[1] <= next[2] ? 1 : 2);
+        const bool last = next[axis] >= t1 || cell[axis] + step[axis] < 0 ||
+                          cell[axis] + step[axis] >= grid_.n[axis];
+        const double exit = last ? kInfinity : next[axis];
+        const int c = grid_.Index(cell[0], cell[1], cell[2]);
+        for (uint32_t k = grid_.cellStart[c]; k < grid_.cellStart[c + 1]; ++k) {
+            Span span;
+            if (spanOf(static_cast<int>(grid_.cellBalls[k]), span) && span.enter >= entry &&
+                span.enter < exit) {
+                add(span);
+            }
+        }
+        if (std::optional<double> root = sweepTo(exit)) return root;
+        if (last) return std::nullopt;
+        entry = exit;
+        cell[axis] += step[axis];
+        next[axis] = boundary(axis);
+    }
 }
 
 double MetaballSum::Value(const Vec3& p) const {

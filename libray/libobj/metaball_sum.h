@@ -13,16 +13,19 @@
 // still finds it). Intervals where a bound of F stays below T by a safe margin are skipped
 // without forming their quartic (kFieldBoundMargin in the .cpp derives it).
 //
-// Cost: the balls whose spheres of influence the ray meets are found through a bounding
-// volume hierarchy over their boxes (a plain loop for a few balls), so a ray costs about
-// O(log N + k log k) for the k balls it meets, not O(N). (Opening the hierarchy front to
-// back and stopping at the first root was measured slower on the benchmark chains, N = 100
-// … 100,000: the ordered walk's heap costs more than the balls it skips.) The quartics sum
-// their active balls in increasing ball index, so results do not depend on the hierarchy.
+// Cost: the balls a ray may meet are found through a uniform grid over their boxes, walked
+// front to back (3-D DDA): an interval is solved as soon as every cell the ray crossed
+// before its end has been read, and the walk stops at the first root, so a ray costs about
+// the cells it crosses up to its first root plus O(k log k) for the k balls met there, not
+// O(N). Where the balls crowd into a few cells (the cells would hold many balls each on
+// average), a bounding volume hierarchy over the boxes is used instead, collecting every
+// ball along the ray; a few balls are simply looped over. The quartics sum their
+// active balls in increasing ball index, so results do not depend on the structure.
 //
 // Strengths may be negative (carving); the threshold T must be > 0.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -56,6 +59,12 @@ class MetaballSum {
     // The box of the spheres of influence: F = 0 outside it.
     const Bounds3& Bounds() const { return bounds_; }
     int Size() const { return static_cast<int>(balls_.size()); }
+    // How the balls along a ray are found (see above).
+    enum class Search { Loop, Grid, Hierarchy };
+    Search SearchStructure() const {
+        return !grid_.IsEmpty() ? Search::Grid
+                                : (hierarchy_.IsEmpty() ? Search::Loop : Search::Hierarchy);
+    }
 
   private:
     // Ball data in the form the intersection uses.
@@ -65,13 +74,30 @@ class MetaballSum {
         double inverseRadius2;  // 1/r²
         double strength;
     };
+    // A uniform grid over bounds_: cell c lists, in increasing index, every ball whose box
+    // (padded by kGridPadding of the grid's extent) overlaps it, in
+    // cellBalls[cellStart[c] .. cellStart[c + 1]).
+    struct Grid {
+        int n[3] = {0, 0, 0};
+        Vec3 lo, cellSize;
+        std::vector<uint32_t> cellStart, cellBalls;
+        bool IsEmpty() const { return cellStart.empty(); }
+        // The cell index along `axis` holding coordinate x, clamped to the grid.
+        int CellOf(double x, int axis) const;
+        int Index(int ix, int iy, int iz) const { return (iz * n[1] + iy) * n[0] + ix; }
+    };
+    // Builds grid_ over the balls' boxes; leaves it empty when the balls crowd into too few
+    // cells (the caller then builds hierarchy_).
+    void BuildGrid(const std::vector<Bounds3>& boxes);
     // The indices of the balls whose box contains p, in increasing order, into `out`.
     void BallsAt(const Vec3& p, std::vector<int>& out) const;
 
     double threshold_;
     std::vector<Ball> balls_;
     Bounds3 bounds_;
-    BoundingVolumeHierarchy hierarchy_;  // over the balls' boxes; empty for a few balls
+    // At most one of the two is built: none for a few balls (a plain loop).
+    Grid grid_;
+    BoundingVolumeHierarchy hierarchy_;
 };
 
 }  // namespace rs
