@@ -10,8 +10,8 @@
 // between the ray's entries into and exits from the spheres of radius R, formed with the
 // origin moved to the interval's start (no cancellation for distant cameras, research note
 // §8), the first root in (tMin, tMax) whichever interval it is in (no lost exits for rays
-// starting just outside, §8 "Defect 2"); the balls a ray meets come from a bounding volume
-// hierarchy, so a ray costs O(log N + k log k) for k balls met.
+// starting just outside, §8 "Defect 2"); the balls a ray meets come from a grid walked
+// front to back, so a ray costs the cells it crosses up to its first root, not O(N).
 //
 // Guarantee: the roots of each interval's quartic to the solver's accuracy (about 4 ulp of
 // u); a double root (tangency within the solver's rounding bound) is a hit. The `tolerance`
