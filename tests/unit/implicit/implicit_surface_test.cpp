@@ -89,6 +89,17 @@ std::shared_ptr<Primitive> Parse(const std::string& text) {
     return p;
 }
 
+// Ray i of a deterministic spread: from `distance` away from the origin, its directions
+// spiralling over the sphere, toward a point of the box [−spread, spread].
+Ray SpreadRay(int i, double distance, const Vec3& spread) {
+    const double a = 0.41 * i, b = 0.13 * i;
+    const Vec3 o{distance * std::cos(a) * std::cos(b), distance * std::sin(a) * std::cos(b),
+                 distance * std::sin(b)};
+    const Vec3 target{spread.x * std::sin(1.7 * i), spread.y * std::cos(2.3 * i),
+                      spread.z * std::sin(0.9 * i)};
+    return Ray{o, Normalize(target - o)};
+}
+
 std::optional<double> Hit(const Primitive& p, const Ray& ray, PrimitiveHit* out = nullptr) {
     PrimitiveHit hit;
     if (!p.Intersect(ray, 1e-5, 1e9, hit)) return std::nullopt;
@@ -162,10 +173,7 @@ TEST(ImplicitSurface, Kb89MethodMatchesPatches) {
     ASSERT_TRUE(patches && kb89);
     int hits = 0;
     for (int i = 0; i < 400; ++i) {
-        double a = 0.1 * i, b = 0.037 * i;
-        Vec3 o{5 * std::cos(a) * std::cos(b), 5 * std::sin(a) * std::cos(b), 5 * std::sin(b)};
-        Vec3 target{0.4 * std::sin(3.1 * i), 0.4 * std::cos(1.7 * i), 0.3 * std::sin(0.7 * i)};
-        Ray ray{o, Normalize(target - o)};
+        const Ray ray = SpreadRay(i, 5, {0.4, 0.4, 0.3});
         auto t1 = Hit(*patches, ray);
         auto t2 = Hit(*kb89, ray);
         ASSERT_EQ(t1.has_value(), t2.has_value()) << i;
@@ -194,10 +202,7 @@ TEST(ImplicitSurface, ManyPatchesMatchTheSingleOctree) {
     EXPECT_EQ(patches.PatchCount(), 150);
     int hits = 0;
     for (int i = 0; i < 600; ++i) {
-        double a = 0.37 * i, b = 0.11 * i;
-        Vec3 o{9 * std::cos(a) * std::cos(b), 9 * std::sin(a) * std::cos(b), 9 * std::sin(b)};
-        Vec3 target{3 * std::sin(1.3 * i), 3 * std::cos(2.9 * i), 3 * std::sin(0.53 * i)};
-        Ray ray{o, Normalize(target - o)};
+        const Ray ray = SpreadRay(i, 9, {3, 3, 3});
         PrimitiveHit h1, h2;
         bool got1 = patches.Intersect(ray, 1e-5, 1e9, h1);
         bool got2 = whole.Intersect(ray, 1e-5, 1e9, h2);
@@ -228,10 +233,7 @@ TEST(ImplicitSurface, BlobKernelMatchesTheBlobPrimitive) {
     ASSERT_TRUE(implicit);
     int hits = 0;
     for (int i = 0; i < 500; ++i) {
-        double a = 0.41 * i, b = 0.13 * i;
-        Vec3 o{5 * std::cos(a) * std::cos(b), 5 * std::sin(a) * std::cos(b), 5 * std::sin(b)};
-        Vec3 target{0.8 * std::sin(1.7 * i), 0.8 * std::cos(2.3 * i), 0.6 * std::sin(0.9 * i)};
-        Ray ray{o, Normalize(target - o)};
+        const Ray ray = SpreadRay(i, 5, {0.8, 0.8, 0.6});
         PrimitiveHit h1, h2;
         bool got1 = implicit->Intersect(ray, 1e-5, 1e9, h1);
         bool got2 = blob.Intersect(ray, 1e-5, 1e9, h2);
@@ -298,10 +300,7 @@ TEST(ImplicitSurface, AutoMethodIsPolynomialWithThePatchesOfMethodPatches) {
         EXPECT_EQ(a->Method(), ImplicitMethod::Polynomial) << method;
         int hits = 0;
         for (int i = 0; i < 400; ++i) {
-            double u = 0.37 * i, v = 0.11 * i;
-            Vec3 o{4 * std::cos(u) * std::cos(v), 4 * std::sin(u) * std::cos(v), 4 * std::sin(v)};
-            Vec3 target{0.5 * std::sin(1.3 * i), 0.4 * std::cos(2.1 * i), 0.3 * std::sin(0.7 * i)};
-            Ray ray{o, Normalize(target - o)};
+            const Ray ray = SpreadRay(i, 4, {0.5, 0.4, 0.3});
             PrimitiveHit ha, hp;
             bool gotA = automatic->Intersect(ray, 1e-5, 1e9, ha);
             ASSERT_EQ(gotA, patches->Intersect(ray, 1e-5, 1e9, hp)) << i;
