@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "libobj/polynomial.h"
 
@@ -53,11 +54,23 @@ struct Event {
     bool entering;
 };
 
-// Per-thread scratch of FirstRoot, so rays allocate nothing once it has grown.
+// Per-thread scratch of FirstRoot, sized for every ball of the largest sum seen (a ray
+// meets each ball at most once), so rays neither allocate nor check capacities. The arrays
+// are left uninitialised: only their used prefixes are read, and untouched pages cost
+// nothing.
 struct Scratch {
-    std::vector<Span> spans;
-    std::vector<Event> events;  // a min-heap on t: the events not swept yet
-    std::vector<int> active;    // indices into spans, in increasing ball index
+    std::unique_ptr<Span[]> spans;
+    std::unique_ptr<Event[]> events;  // not swept yet (in the grid walk, a min-heap on t)
+    std::unique_ptr<int[]> active;    // indices into spans, in increasing ball index
+    size_t capacity = 0;              // balls
+
+    void Reserve(size_t balls) {
+        if (balls <= capacity) return;
+        spans.reset(new Span[balls]);
+        events.reset(new Event[2 * balls]);
+        active.reset(new int[balls]);
+        capacity = balls;
+    }
 };
 
 // The largest value of s·q² over [ta, tb] for a span, q = 1 − ρ²/r² ∈ [0, 1] being largest at
@@ -146,22 +159,25 @@ void MetaballSum::BuildGrid(const std::vector<Bounds3>& boxes) {
     grid_ = std::move(grid);
 }
 
-void MetaballSum::BallsAt(const Vec3& p, std::vector<int>& out) const {
-    out.clear();
+template <class Visit>
+void MetaballSum::ForBallsAt(const Vec3& p, Visit&& visit) const {
     if (!grid_.IsEmpty()) {
         if (!bounds_.Contains(p)) return;
         const int c = grid_.Index(grid_.CellOf(p.x, 0), grid_.CellOf(p.y, 1), grid_.CellOf(p.z, 2));
         for (uint32_t k = grid_.cellStart[c]; k < grid_.cellStart[c + 1]; ++k) {
-            out.push_back(static_cast<int>(grid_.cellBalls[k]));
+            visit(static_cast<int>(grid_.cellBalls[k]));
         }
         return;
     }
     if (hierarchy_.IsEmpty()) {
-        for (size_t i = 0; i < balls_.size(); ++i) out.push_back(static_cast<int>(i));
+        for (size_t i = 0; i < balls_.size(); ++i) visit(static_cast<int>(i));
         return;
     }
-    hierarchy_.VisitContaining(p, [&](int i) { out.push_back(i); });
-    std::sort(out.begin(), out.end());
+    thread_local std::vector<int> near;
+    near.clear();
+    hierarchy_.VisitContaining(p, [&](int i) { near.push_back(i); });
+    std::sort(near.begin(), near.end());
+    for (int i : near) visit(i);
 }
 
 std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double tMax,
@@ -170,12 +186,11 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
     const double dd = LengthSquared(ray.dir);
     if (!(dd > 0)) return std::nullopt;
     thread_local Scratch scratch;
-    std::vector<Span>& spans = scratch.spans;
-    std::vector<Event>& pending = scratch.events;
-    std::vector<int>& active = scratch.active;
-    spans.clear();
-    pending.clear();
-    active.clear();
+    scratch.Reserve(balls_.size());
+    Span* const spans = scratch.spans.get();
+    Event* const pending = scratch.events.get();
+    int* const active = scratch.active.get();
+    int spanCount = 0, pendingCount = 0, activeCount = 0;
     const auto later = [](const Event& a, const Event& b) { return a.t > b.t; };
     double peakSum = 0, strengthSum = 0;  // over the balls met
 
@@ -193,12 +208,10 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
         return span.enter < span.exit;
     };
     const auto add = [&](const Span& span) {
-        const int k = static_cast<int>(spans.size());
-        spans.push_back(span);
-        pending.push_back({span.enter, k, true});
-        std::push_heap(pending.begin(), pending.end(), later);
-        pending.push_back({span.exit, k, false});
-        std::push_heap(pending.begin(), pending.end(), later);
+        const int k = spanCount++;
+        spans[k] = span;
+        pending[pendingCount++] = {span.enter, k, true};
+        pending[pendingCount++] = {span.exit, k, false};
         const Ball& b = balls_[span.ball];
         if (b.strength > 0) {
             const double q = 1 - span.dist2 / b.radius2;
@@ -210,7 +223,8 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
     // The first root in (tMin, tMax) of F − T on [ta, tb], where the active balls are fixed.
     const auto solve = [&](double ta, double tb) -> std::optional<double> {
         double bound = 0, activeStrength = 0;
-        for (int k : active) {
+        for (int a = 0; a < activeCount; ++a) {
+            const int k = active[a];
             const Ball& b = balls_[spans[k].ball];
             bound += TermPeak(b.strength, b.radius2, spans[k], dd, ta, tb);
             activeStrength += std::abs(b.strength);
@@ -222,8 +236,8 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
         // ρ_i² = |d|²u² + 2(o'−c)·d u + |o'−c|², o' = the point at ta.
         const Vec3 start = ray.At(ta);
         double c[5] = {-threshold_, 0, 0, 0, 0};  // ascending powers
-        for (int k : active) {
-            const Ball& b = balls_[spans[k].ball];
+        for (int a = 0; a < activeCount; ++a) {
+            const Ball& b = balls_[spans[active[a]].ball];
             const Vec3 oc = start - b.centre;
             const double a2 = -dd * b.inverseRadius2,
                          a1 = -2 * Dot(oc, ray.dir) * b.inverseRadius2,
@@ -245,28 +259,26 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
         return std::nullopt;
     };
 
-    // Sweeps the pending events up to x, before which no unknown ball enters: every interval
-    // between two of them has its whole active set. Returns the root when one is found.
+    // One step of the sweep along the ray: the event's interval [cursor, event.t], if some
+    // ball is active there, is solved (the events are taken in increasing t, and every
+    // event before event.t is known), then the event is applied.
     double cursor = 0;  // the last event swept; read only while some ball is active
-    const auto byBall = [&spans](int k, int ball) { return spans[k].ball < ball; };
-    const auto sweepTo = [&](double x) -> std::optional<double> {
-        while (!pending.empty() && pending.front().t <= x) {
-            std::pop_heap(pending.begin(), pending.end(), later);
-            const Event event = pending.back();
-            pending.pop_back();
-            if (!active.empty() && event.t > cursor) {
-                if (std::optional<double> root = solve(cursor, event.t)) return root;
-            }
-            // Active balls in increasing index, the order of the quartic's sums.
-            const auto at =
-                std::lower_bound(active.begin(), active.end(), spans[event.span].ball, byBall);
-            if (event.entering) {
-                active.insert(at, event.span);
-            } else {
-                active.erase(at);
-            }
-            cursor = event.t;
+    const auto sweep = [&](const Event& event) -> std::optional<double> {
+        if (activeCount > 0 && event.t > cursor) {
+            if (std::optional<double> root = solve(cursor, event.t)) return root;
         }
+        // Active balls in increasing index, the order of the quartic's sums.
+        const int ball = spans[event.span].ball;
+        if (event.entering) {
+            int i = activeCount++;
+            for (; i > 0 && spans[active[i - 1]].ball > ball; --i) active[i] = active[i - 1];
+            active[i] = event.span;
+        } else {
+            int i = 0;
+            while (active[i] != event.span) ++i;
+            for (--activeCount; i < activeCount; ++i) active[i] = active[i + 1];
+        }
+        cursor = event.t;
         return std::nullopt;
     };
     constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -286,15 +298,20 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
                 return false;  // collects every ball: the segment is not shortened
             });
         }
-        if (spans.empty()) return std::nullopt;
+        if (spanCount == 0) return std::nullopt;
         // Even every ball at its peak stays below the threshold: no root anywhere.
         if (peakSum + kFieldBoundMargin * (threshold_ + strengthSum) < threshold_) {
             return std::nullopt;
         }
-        return sweepTo(kInfinity);
+        std::sort(pending, pending + pendingCount,
+                  [](const Event& a, const Event& b) { return a.t < b.t; });
+        for (int e = 0; e < pendingCount; ++e) {
+            if (std::optional<double> root = sweep(pending[e])) return root;
+        }
+        return std::nullopt;
     }
 
-    // Grid walk. Cell k covers the parameters [entry_k, exit_k) of the ray (the first from
+    // Grid walk, the pending events kept as a min-heap on t. Cell k covers the parameters [entry_k, exit_k) of the ray (the first from
     // −∞, the last to +∞, absorbing rounding at the grid's faces). A ball is added by the
     // cell whose range holds its entry parameter, which lists it (its box, padded, overlaps
     // the cell there): so once cell k is read, every ball entering before exit_k is known.
@@ -326,9 +343,16 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
             if (spanOf(static_cast<int>(grid_.cellBalls[k]), span) && span.enter >= entry &&
                 span.enter < exit) {
                 add(span);
+                std::push_heap(pending, pending + pendingCount - 1, later);
+                std::push_heap(pending, pending + pendingCount, later);
             }
         }
-        if (std::optional<double> root = sweepTo(exit)) return root;
+        // Every ball entering before `exit` is known: sweep the events up to it.
+        while (pendingCount > 0 && pending[0].t <= exit) {
+            std::pop_heap(pending, pending + pendingCount, later);
+            const Event event = pending[--pendingCount];
+            if (std::optional<double> root = sweep(event)) return root;
+        }
         if (last) return std::nullopt;
         entry = exit;
         cell[axis] += step[axis];
@@ -337,49 +361,43 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
 }
 
 double MetaballSum::Value(const Vec3& p) const {
-    thread_local std::vector<int> near;
-    BallsAt(p, near);
     double f = 0;
-    for (int i : near) {
+    ForBallsAt(p, [&](int i) {
         const Ball& b = balls_[i];
         const double q = 1 - LengthSquared(p - b.centre) / b.radius2;
         if (q > 0) f += b.strength * q * q;
-    }
+    });
     return f;
 }
 
 Vec3 MetaballSum::Gradient(const Vec3& p) const {
     // ∇[s(1 − ρ²/r²)²] = −(4s/r²)(1 − ρ²/r²)(X − c) = (4·c4·ρ² + 2·c2)(X − c) with c4 = s/r⁴,
     // c2 = −2s/r², inside the ball.
-    thread_local std::vector<int> near;
-    BallsAt(p, near);
     Vec3 g;
-    for (int i : near) {
+    ForBallsAt(p, [&](int i) {
         const Ball& b = balls_[i];
         const Vec3 d = p - b.centre;
         const double rho2 = LengthSquared(d);
-        if (rho2 >= b.radius2) continue;
+        if (rho2 >= b.radius2) return;
         const double c4 = b.strength / (b.radius2 * b.radius2), c2 = -2 * b.strength / b.radius2;
         g += d * (4 * c4 * rho2 + 2 * c2);
-    }
+    });
     return g;
 }
 
 int MetaballSum::Predominant(const Vec3& p) const {
-    thread_local std::vector<int> near;
-    BallsAt(p, near);
     int best = -1;
     double bestValue = 0;
-    for (int i : near) {  // increasing index: a later ball must be strictly larger
+    ForBallsAt(p, [&](int i) {  // increasing index: a later ball must be strictly larger
         const Ball& b = balls_[i];
         const double q = 1 - LengthSquared(p - b.centre) / b.radius2;
-        if (q <= 0) continue;
+        if (q <= 0) return;
         const double value = b.strength * q * q;
         if (best < 0 || value > bestValue) {
             best = i;
             bestValue = value;
         }
-    }
+    });
     return best;
 }
 

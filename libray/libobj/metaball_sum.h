@@ -89,8 +89,10 @@ class MetaballSum {
     // Builds grid_ over the balls' boxes; leaves it empty when the balls crowd into too few
     // cells (the caller then builds hierarchy_).
     void BuildGrid(const std::vector<Bounds3>& boxes);
-    // The indices of the balls whose box contains p, in increasing order, into `out`.
-    void BallsAt(const Vec3& p, std::vector<int>& out) const;
+    // Calls visit(i) for every ball whose box may contain p (at least those that do), in
+    // increasing index.
+    template <class Visit>
+    void ForBallsAt(const Vec3& p, Visit&& visit) const;
 
     double threshold_;
     std::vector<Ball> balls_;
