@@ -193,6 +193,22 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
         }
     };
 
+    // Supersamples the listed pixels that are not yet, kRun list entries per work item: with
+    // one pixel (a few microseconds) per item, the threads contended for the shared index
+    // and for the cache lines of neighbouring pixels, which the lists keep together. A stop
+    // request waits for the items in progress only.
+    auto supersampleAll = [&](const std::vector<long>& list) {
+        constexpr long kRun = 32;
+        const long count = static_cast<long>(list.size());
+        ParallelFor((count + kRun - 1) / kRun, [&](long k) {
+            for (long i = k * kRun; i < std::min(count, (k + 1) * kRun); ++i) {
+                const long idx = list[i];
+                if (!pixels[idx].supersampled)
+                    Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
+            }
+        });
+    };
+
     // 1. One sample per pixel, in blocks of rows so the state can be saved between them:
     // sixteen blocks (of at least 16 rows). Each block ends with threads idle while the
     // last rows finish, so fewer, larger blocks scale better; a stop request does not wait
@@ -222,11 +238,7 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
             for (int x = 0; x < w; ++x)
                 if (wholeRow || x == 0 || x == w - 1) border.push_back(static_cast<long>(y) * w + x);
         }
-        ParallelFor(static_cast<long>(border.size()), [&](long i) {
-            long idx = border[i];
-            if (!pixels[idx].supersampled)
-                Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
-        });
+        supersampleAll(border);
         safePoint();
         state.phase = Phase::Refinement;
         state.pass = 0;
@@ -243,11 +255,7 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
             return x >= 1 && x <= w - 2 && y >= 1 && y <= h - 1;
         };
         while (state.phase == Phase::Refinement) {
-            ParallelFor(static_cast<long>(state.todo.size()), [&](long i) {
-                long idx = state.todo[i];
-                if (!pixels[idx].supersampled)
-                    Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
-            });
+            supersampleAll(state.todo);
             report(static_cast<long>(state.todo.size()) / 4);
             safePoint();
 
