@@ -236,9 +236,13 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
     if (state.phase == Phase::Border) {
         std::vector<long> border;
         for (int y = 0; y < rows; ++y) {
-            bool wholeRow = y == 0 || y == h - 1;
-            for (int x = 0; x < w; ++x)
-                if (wholeRow || x == 0 || x == w - 1) border.push_back(static_cast<long>(y) * w + x);
+            const long row = static_cast<long>(y) * w;
+            if (y == 0 || y == h - 1) {
+                for (int x = 0; x < w; ++x) border.push_back(row + x);
+            } else {
+                border.push_back(row);
+                if (w > 1) border.push_back(row + w - 1);
+            }
         }
         supersampleAll(border);
         safePoint();
