@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -136,6 +137,9 @@ bool LoadFrameState(const std::string& path, const std::string& fingerprint, Fra
         if (!r.Get(v) || v < 0 || static_cast<uint64_t>(v) >= pixelCount) return damaged();
         t = static_cast<long>(v);
     }
+    // The renderer keeps the list in increasing order; earlier versions saved it in the
+    // order the pixels were queued.
+    std::sort(state.todo.begin(), state.todo.end());
     uint64_t count = 0;
     if (!r.Get(count) || count != pixelCount) return damaged();
     state.pixels.resize(count);

@@ -4,7 +4,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <span>
 #include <thread>
+#include <utility>
 
 #include "libcommon/constants.h"
 #include "libcommon/error.h"
@@ -193,6 +195,22 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
         }
     };
 
+    // Supersamples the listed pixels that are not yet, kRun list entries per work item: with
+    // one pixel (a few microseconds) per item, the threads contended for the shared index
+    // and for the cache lines of neighbouring pixels, which the lists keep together. A stop
+    // request waits for the items in progress only.
+    auto supersampleAll = [&](std::span<const long> list) {
+        constexpr long kRun = 32;
+        const long count = static_cast<long>(list.size());
+        ParallelFor((count + kRun - 1) / kRun, [&](long k) {
+            for (long i = k * kRun; i < std::min(count, (k + 1) * kRun); ++i) {
+                const long idx = list[i];
+                if (!pixels[idx].supersampled)
+                    Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
+            }
+        });
+    };
+
     // 1. One sample per pixel, in blocks of rows so the state can be saved between them:
     // sixteen blocks (of at least 16 rows). Each block ends with threads idle while the
     // last rows finish, so fewer, larger blocks scale better; a stop request does not wait
@@ -218,15 +236,15 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
     if (state.phase == Phase::Border) {
         std::vector<long> border;
         for (int y = 0; y < rows; ++y) {
-            bool wholeRow = y == 0 || y == h - 1;
-            for (int x = 0; x < w; ++x)
-                if (wholeRow || x == 0 || x == w - 1) border.push_back(static_cast<long>(y) * w + x);
+            const long row = static_cast<long>(y) * w;
+            if (y == 0 || y == h - 1) {
+                for (int x = 0; x < w; ++x) border.push_back(row + x);
+            } else {
+                border.push_back(row);
+                if (w > 1) border.push_back(row + w - 1);
+            }
         }
-        ParallelFor(static_cast<long>(border.size()), [&](long i) {
-            long idx = border[i];
-            if (!pixels[idx].supersampled)
-                Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
-        });
+        supersampleAll(border);
         safePoint();
         state.phase = Phase::Refinement;
         state.pass = 0;
@@ -236,73 +254,87 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
     // 3. Contrast refinement until a pass changes nothing. The first pass tests every
     // interior pixel; later passes only the pixels whose five-pixel neighbourhood contains
     // one that the previous pass supersampled (no other test result can change). The order
-    // of the lists does not matter: each pixel's samples depend on the pixel alone.
-    if (state.phase == Phase::Refinement) {
-        auto isInterior = [&](long n) {
-            long x = n % w, y = n / w;
-            return x >= 1 && x <= w - 2 && y >= 1 && y <= h - 1;
-        };
-        while (state.phase == Phase::Refinement) {
-            ParallelFor(static_cast<long>(state.todo.size()), [&](long i) {
-                long idx = state.todo[i];
-                if (!pixels[idx].supersampled)
-                    Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
-            });
-            report(static_cast<long>(state.todo.size()) / 4);
-            safePoint();
+    // of work does not matter: each pixel's samples depend on the pixel alone. Between
+    // passes, each row finds its pixels to test, then its pixels to queue, from its own and
+    // its two neighbouring rows: all rows in parallel, with no serial step over the lists.
+    while (state.phase == Phase::Refinement) {
+        supersampleAll(state.todo);
+        report(static_cast<long>(state.todo.size()) / 4);
+        safePoint();
 
-            // The pixels whose contrast exceeds the thresholds queue their five-pixel
-            // neighbourhoods (each pixel once) for the next pass.
-            std::vector<long> next, tested;
-            auto queueNeighbourhood = [&](long c) {
-                for (long n : {c, c - 1, c + 1, c - w, c + w}) {
-                    if (pixels[n].supersampled || pixels[n].queued) continue;
-                    pixels[n].queued = true;
-                    next.push_back(n);
-                }
-            };
-            if (state.pass == 0) {
-                // Every interior pixel is tested: the tests run in parallel by rows (they
-                // only read) and list each row's flagged columns; the queueing of their
-                // neighbourhoods stays serial, in pixel order.
-                std::vector<std::vector<int>> flaggedColumns(h);
-                ParallelFor(h - 1, [&](long i) {
-                    const int y = static_cast<int>(i) + 1;
-                    for (int x = 1; x < w - 1; ++x)
-                        if (NeedsRefinement(pixels.data(), x, y)) flaggedColumns[y].push_back(x);
-                });
-                safePoint();  // a stop cuts the tests short: save the state from before them
-                for (int y = 1; y < h; ++y)
-                    for (int x : flaggedColumns[y]) queueNeighbourhood(static_cast<long>(y) * w + x);
-            } else {
-                // The interior pixels around the ones just supersampled, each once. Their
-                // tests run in parallel (they only read); the queueing stays serial, in
-                // the list's order.
-                for (long t : state.todo)
-                    for (long c : {t, t - 1, t + 1, t - w, t + w}) {
-                        if (c < 0 || c >= static_cast<long>(pixels.size()) || !isInterior(c) ||
-                            pixels[c].tested)
-                            continue;
-                        pixels[c].tested = true;
-                        tested.push_back(c);
+        // Row y's entries of the list just supersampled (it is in increasing order).
+        auto doneInRow = [&](int y) {
+            auto first = std::lower_bound(state.todo.begin(), state.todo.end(), static_cast<long>(y) * w);
+            auto last = std::lower_bound(first, state.todo.end(), static_cast<long>(y + 1) * w);
+            return std::pair(first, last);
+        };
+        // The columns of each interior row whose contrast exceeds the thresholds, in
+        // increasing order.
+        std::vector<std::vector<int>> flagged(rows);
+        ParallelFor(h - 1, [&](long i) {
+            const int y = static_cast<int>(i) + 1;
+            std::vector<uint8_t> candidate(w, state.pass == 0);
+            if (state.pass > 0) {
+                bool any = false;
+                for (int dy = -1; dy <= 1; ++dy) {
+                    auto [first, last] = doneInRow(y + dy);
+                    for (auto t = first; t != last; ++t) {
+                        const int x = static_cast<int>(*t - static_cast<long>(y + dy) * w);
+                        candidate[x] = 1;
+                        if (dy == 0) {
+                            if (x > 0) candidate[x - 1] = 1;
+                            if (x + 1 < w) candidate[x + 1] = 1;
+                        }
+                        any = true;
                     }
-                const long count = static_cast<long>(tested.size());
-                std::vector<uint8_t> flagged(tested.size());
-                constexpr long kChunk = 4096;  // tests per work item: a test is ~20 ns
-                ParallelForAll((count + kChunk - 1) / kChunk, [&](long k) {
-                    for (long i = k * kChunk; i < std::min(count, (k + 1) * kChunk); ++i)
-                        flagged[i] = NeedsRefinement(pixels.data(), static_cast<int>(tested[i] % w),
-                                                     static_cast<int>(tested[i] / w));
-                });
-                for (long i = 0; i < count; ++i)
-                    if (flagged[i]) queueNeighbourhood(tested[i]);
+                }
+                if (!any) return;
             }
-            for (long c : tested) pixels[c].tested = false;
-            for (long n : next) pixels[n].queued = false;
-            state.todo = std::move(next);
-            ++state.pass;
-            if (state.todo.empty()) state.phase = Phase::Done;
-        }
+            for (int x = 1; x < w - 1; ++x)
+                if (candidate[x] && NeedsRefinement(pixels.data(), x, y)) flagged[y].push_back(x);
+        });
+        safePoint();  // a stop cuts the tests short: save the state from before them
+
+        // Flagged pixels queue their five-pixel neighbourhoods, but not the pixels already
+        // supersampled. markQueued marks row y's by column (false: none); each row's count
+        // is found first, then the next list is written in place.
+        auto markQueued = [&](int y, std::vector<uint8_t>& queue) {
+            const bool above = y > 0 && !flagged[y - 1].empty();
+            const bool below = y + 1 < rows && !flagged[y + 1].empty();
+            if (flagged[y].empty() && !above && !below) return false;
+            queue.assign(w, 0);
+            for (int x : flagged[y]) queue[x - 1] = queue[x] = queue[x + 1] = 1;
+            if (above)
+                for (int x : flagged[y - 1]) queue[x] = 1;
+            if (below)
+                for (int x : flagged[y + 1]) queue[x] = 1;
+            for (int x = 0; x < w; ++x)
+                if (queue[x] && pixels[static_cast<long>(y) * w + x].supersampled) queue[x] = 0;
+            return true;
+        };
+        std::vector<long> offset(rows + 1);  // of each row's pixels in the next list
+        ParallelForAll(rows, [&](long y) {
+            std::vector<uint8_t> queue;
+            if (markQueued(static_cast<int>(y), queue))
+                offset[y + 1] = static_cast<long>(std::count(queue.begin(), queue.end(), 1));
+        });
+        for (int y = 0; y < rows; ++y) offset[y + 1] += offset[y];
+        // A list of an eighth of a huge page or more (the first pass's of a large frame) gets
+        // a whole one (see LargeBufferAllocator): one page fault instead of 64 or more, which
+        // took milliseconds on a virtual machine.
+        constexpr size_t kHugeList = LargeBufferAllocator<long>::kHugePage / sizeof(long);
+        const size_t count = static_cast<size_t>(offset[rows]);
+        if (count >= kHugeList / 8) state.todo.reserve(std::max(count, kHugeList));
+        state.todo.resize(count);
+        ParallelForAll(rows, [&](long y) {
+            std::vector<uint8_t> queue;
+            if (!markQueued(static_cast<int>(y), queue)) return;
+            long* out = state.todo.data() + offset[y];
+            for (int x = 0; x < w; ++x)
+                if (queue[x]) *out++ = y * w + x;
+        });
+        ++state.pass;
+        if (state.todo.empty()) state.phase = Phase::Done;
     }
     if (progress_) progress_(totalWork, totalWork);
     return Encode(state, withAlpha);

@@ -49,10 +49,6 @@ struct PixelState {
     int16_t singleCell;
     bool sampled : 1;       // the single sample has been taken
     bool supersampled : 1;
-    // Work marks of the current refinement pass (contrast tested, queued for supersampling);
-    // the renderer clears them before the next pass. Not part of the saved state.
-    bool tested : 1;
-    bool queued : 1;
 
     Color Value() const { return {r, g, b}; }
     // Values beyond float's range (a light of intensity 1e300) saturate at ±FLT_MAX instead of
@@ -80,7 +76,8 @@ struct FrameState {
     int width = 0, rows = 0;  // rows includes the extra row below the window
     Phase phase = Phase::SingleSamples;
     int pass = 0;             // refinement passes completed
-    std::vector<long> todo;   // pixels the current refinement pass supersamples
+    // The pixels the current refinement pass supersamples, in increasing order.
+    std::vector<long, LargeBufferAllocator<long>> todo;
     std::vector<PixelState, LargeBufferAllocator<PixelState>> pixels;
 };
 

@@ -9,8 +9,10 @@
 #include <atomic>
 #include <csetjmp>
 #include <thread>
+#include <utility>
 #include <vector>
 
+#include "libcommon/large_buffer.h"
 #include "libimage/codec.h"
 
 namespace rs {
@@ -85,36 +87,42 @@ int ColorType(int channels) {
     }
 }
 
-// The PNG image data (zlib stream) of `image`: every row preceded by filter type 1 ("sub":
-// each byte minus the byte one pixel to its left), deflated at level 2 in pieces of
-// kRowsPerPiece rows, shared out among `threads` threads. The pieces depend only on the
-// image, so the file is the same whatever the number of threads. Each piece is raw
+// Bytes whose fresh memory is touched only where written: a piece's output buffer is sized
+// for the worst case but filled to a fraction of it.
+using Bytes = std::vector<uint8_t, LargeBufferAllocator<uint8_t>>;
+
+// The PNG image data (zlib stream) of `image`, as the runs of bytes that make it up when
+// concatenated (the zlib header, the pieces, the checksum): every row preceded by filter
+// type 1 ("sub": each byte minus the byte one pixel to its left), deflated at level 2 in
+// pieces of kRowsPerPiece rows, shared out among `threads` threads. The pieces depend only
+// on the image, so the file is the same whatever the number of threads. Each piece is raw
 // deflate ending on a byte boundary (a sync flush; the last piece finishes the stream), so
 // the pieces concatenate into one stream, and their Adler-32 checksums combine. Level 2
 // rather than zlib's default 6: encoding is serial work at the end of every frame; on the
 // shared scenes' 1024x1024 images level 2 took 9-18 ms against 11-23 ms at level 3 and
 // 50-60 ms at level 6, for files 3-6% larger than level 3's. The sub filter alone rather
 // than libpng's per-row choice among all five halved the time for files within a few
-// percent of the size. Returns false when zlib fails (out of memory).
-bool DeflateImageData(const Image& image, int threads, std::vector<uint8_t>& stream) {
+// percent of the size. Each thread deflates all its pieces with one zlib stream (reset
+// between pieces), whose quarter megabyte of state would otherwise be fresh memory, and
+// page faults, for every piece. Returns false when zlib fails (out of memory).
+bool DeflateImageData(const Image& image, int threads, std::vector<Bytes>& stream) {
     constexpr int kLevel = 2;
     constexpr int kRowsPerPiece = 128;
     const size_t rowBytes = static_cast<size_t>(image.width) * image.channels;
     const int bpp = image.channels;
     const int pieces = (image.height + kRowsPerPiece - 1) / kRowsPerPiece;
     struct Piece {
-        std::vector<uint8_t> out;
+        Bytes out;
         uLong adler = adler32(0, nullptr, 0);
         uLong length = 0;
         bool ok = false;
     };
     std::vector<Piece> parts(static_cast<size_t>(pieces));
-    auto deflatePiece = [&](int k) {
+    auto deflatePiece = [&](z_stream& z, int k) {
         Piece& part = parts[static_cast<size_t>(k)];
         const int y0 = k * kRowsPerPiece;
         const int y1 = std::min(image.height, y0 + kRowsPerPiece);
-        z_stream z{};
-        if (deflateInit2(&z, kLevel, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) return;
+        if (deflateReset(&z) != Z_OK) return;
         const uLong raw = static_cast<uLong>((rowBytes + 1) * static_cast<size_t>(y1 - y0));
         part.out.resize(deflateBound(&z, raw) + 16);
         z.next_out = part.out.data();
@@ -135,12 +143,14 @@ bool DeflateImageData(const Image& image, int threads, std::vector<uint8_t>& str
         }
         part.length = raw;
         part.out.resize(part.out.size() - z.avail_out);
-        deflateEnd(&z);  // Z_DATA_ERROR for a piece left open after its sync flush: expected
         part.ok = ok;
     };
     std::atomic<int> next{0};
     auto worker = [&] {
-        for (int k; (k = next.fetch_add(1)) < pieces;) deflatePiece(k);
+        z_stream z{};
+        if (deflateInit2(&z, kLevel, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) return;
+        for (int k; (k = next.fetch_add(1)) < pieces;) deflatePiece(z, k);
+        deflateEnd(&z);  // Z_DATA_ERROR for a piece left open after its sync flush: expected
     };
     std::vector<std::thread> helpers;
     for (int t = 1; t < std::min(threads, pieces); ++t) helpers.emplace_back(worker);
@@ -149,32 +159,40 @@ bool DeflateImageData(const Image& image, int threads, std::vector<uint8_t>& str
 
     // zlib header: deflate with a 32 KiB window (0x78), "fast" compression level (FLEVEL 1),
     // check bits making the 16-bit header a multiple of 31.
-    stream = {0x78, 0x5e};
+    stream.clear();
+    stream.push_back({0x78, 0x5e});
     uLong adler = adler32(0, nullptr, 0);
-    for (const Piece& part : parts) {
+    for (Piece& part : parts) {
         if (!part.ok) return false;
-        stream.insert(stream.end(), part.out.begin(), part.out.end());
         adler = adler32_combine(adler, part.adler, static_cast<z_off_t>(part.length));
+        stream.push_back(std::move(part.out));
     }
-    for (int shift = 24; shift >= 0; shift -= 8) stream.push_back(static_cast<uint8_t>(adler >> shift));
+    Bytes check;
+    for (int shift = 24; shift >= 0; shift -= 8) check.push_back(static_cast<uint8_t>(adler >> shift));
+    stream.push_back(std::move(check));
     return true;
 }
 
 // libpng writes the signature, the header and the end; the image data is ours, compressed
-// on `threads` threads.
+// on `threads` threads, and written as one IDAT chunk run by run.
 bool WritePngFrom(PngContext& context, std::FILE* file, const Image& image, int threads) {
     if (setjmp(png_jmpbuf(context.png))) return false;
-    std::vector<uint8_t> data;
+    std::vector<Bytes> data;
     if (!DeflateImageData(image, threads, data)) {
         std::snprintf(context.message, sizeof context.message, "%s", "compression failed (out of memory)");
         return false;
     }
+    size_t length = 0;
+    for (const Bytes& run : data) length += run.size();
     png_init_io(context.png, file);
     png_set_IHDR(context.png, context.info, static_cast<png_uint_32>(image.width),
                  static_cast<png_uint_32>(image.height), 8, ColorType(image.channels),
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(context.png, context.info);
-    png_write_chunk(context.png, reinterpret_cast<png_const_bytep>("IDAT"), data.data(), data.size());
+    png_write_chunk_start(context.png, reinterpret_cast<png_const_bytep>("IDAT"),
+                          static_cast<png_uint_32>(length));
+    for (const Bytes& run : data) png_write_chunk_data(context.png, run.data(), run.size());
+    png_write_chunk_end(context.png);
     png_write_chunk(context.png, reinterpret_cast<png_const_bytep>("IEND"), nullptr, 0);
     return true;
 }
