@@ -103,7 +103,8 @@ MetaballSum::MetaballSum(double threshold, std::vector<Metaball> balls) : thresh
 
 int MetaballSum::Grid::CellOf(double x, int axis) const {
     const double f = std::floor((x - lo[axis]) / cellSize[axis]);
-    return static_cast<int>(std::clamp(f, 0.0, static_cast<double>(n[axis] - 1)));
+    if (!(f >= 0)) return 0;  // also NaN
+    return static_cast<int>(std::min(f, static_cast<double>(n[axis] - 1)));
 }
 
 void MetaballSum::BuildGrid(const std::vector<Bounds3>& boxes) {
@@ -121,9 +122,10 @@ void MetaballSum::BuildGrid(const std::vector<Bounds3>& boxes) {
         }
     }
     const double edge = std::pow(volume / cells, 1.0 / axes);
+    if (!std::isfinite(largest) || !(edge > 0) || !std::isfinite(edge)) return;  // hierarchy
     for (int a = 0; a < 3; ++a) {
         grid.n[a] = extent[a] > 1e-6 * largest
-                        ? std::clamp(static_cast<int>(extent[a] / edge), 1, 1 << 10)
+                        ? static_cast<int>(std::clamp(extent[a] / edge, 1.0, 1024.0))
                         : 1;
         grid.cellSize[a] = std::max(extent[a], 1e-300) / grid.n[a];
     }

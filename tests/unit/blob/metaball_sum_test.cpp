@@ -248,6 +248,24 @@ TEST(MetaballSum, CrowdedBallsUseTheHierarchyWithTheSameAnswers) {
     EXPECT_GT(CheckAgainstSampledField(crowded, chain, chainBox, rng, 200), 100);
 }
 
+// Balls 1e300 apart (their box's volume overflows): no grid, answers still exact.
+TEST(MetaballSum, AstronomicalSpreadFallsBackToTheHierarchy) {
+    std::vector<Metaball> balls;
+    for (int i = 0; i < 10; ++i) {
+        balls.push_back({{2.5 * i, 0, 0}, 1, 1});
+        balls.push_back({{1e300, 1e300 * (i + 1), -1e300}, 1, 1});
+    }
+    MetaballSum sum(kThreshold, balls);
+    EXPECT_EQ(sum.SearchStructure(), MetaballSum::Search::Hierarchy);
+    const double r = SurfaceRadius(balls[0]);
+    for (int i = 0; i < 10; ++i) {
+        const std::optional<double> t = sum.FirstRoot({{2.5 * i, -5, 0}, {0, 1, 0}, 0}, 1e-5, 1e9);
+        ASSERT_TRUE(t.has_value()) << i;
+        EXPECT_NEAR(*t, 5 - r, 1e-12) << i;
+    }
+    EXPECT_FALSE(sum.FirstRoot({{0, -5, 100}, {0, 1, 0}, 0}, 1e-5, 1e9).has_value());
+}
+
 TEST(MetaballSum, GradientAndValueAreTheAnalyticOnesOfTheNearestBall) {
     Rng rng(23);
     for (const Vec3& far : {Vec3{0, 0, 0}, Vec3{1000, 1000, 1000}}) {
