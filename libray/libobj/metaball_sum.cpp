@@ -55,7 +55,10 @@ struct Event {
 };
 
 // Per-thread scratch of FirstRoot, sized for every ball of the largest sum seen (a ray
-// meets each ball at most once), so rays neither allocate nor check capacities. The arrays
+// takes each ball at most once: the loop and the grid walk by construction, the hierarchy
+// because Traverse visits each item once; its depth-overflow fallback, which would revisit
+// them, cannot trigger for a median-split tree of fewer than 2^60 items), so rays neither
+// allocate nor check capacities. The arrays
 // are left uninitialised: only their used prefixes are read, and untouched pages cost
 // nothing.
 struct Scratch {
