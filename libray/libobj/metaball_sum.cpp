@@ -40,11 +40,15 @@ constexpr double kGridPadding = 1e-6;
 // that) stays below the margin for rays starting within some 10⁷ ball radii of the balls.
 constexpr double kFieldBoundMargin = 1e-7;
 
-// A ball the ray meets: where it passes closest to the centre (parameter and squared
-// distance) and the part of (tMin, tMax) inside the sphere of influence.
+// Where the ray is inside a ball's support, on one piece of it: ρ²(t) = dist2 +
+// curvature·(t − tClosest)² there, about the ball's centre (piece kSphereAtCentre), its
+// segment's far end (kSphereAtEnd) or its axis line (kAxis); enter and exit bound the part
+// of (tMin, tMax) on the piece with ρ < r.
+enum Piece { kSphereAtCentre, kAxis, kSphereAtEnd };
 struct Span {
     int ball;
-    double tClosest, dist2;
+    Piece piece;
+    double tClosest, dist2, curvature;
     double enter, exit;
 };
 
@@ -54,37 +58,40 @@ struct Event {
     bool entering;
 };
 
-// Per-thread scratch of FirstRoot, sized for every ball of the largest sum seen (a ray
-// takes each ball at most once: the loop and the grid walk by construction, the hierarchy
-// because Traverse visits each item once; its depth-overflow fallback, which would revisit
-// them, cannot trigger for a median-split tree of fewer than 2^60 items), so rays neither
-// allocate nor check capacities. The arrays
+// Per-thread scratch of FirstRoot, sized for every span the largest sum seen can give (a
+// ray takes each ball at most once: the loop and the grid walk by construction, the
+// hierarchy because Traverse visits each item once, its depth-overflow fallback, which
+// would revisit them, not triggering for a median-split tree of fewer than 2^60 items; and
+// a ball gives one span, a capsule up to three), so rays neither allocate nor check
+// capacities. The arrays
 // are left uninitialised: only their used prefixes are read, and untouched pages cost
 // nothing.
 struct Scratch {
     std::unique_ptr<Span[]> spans;
     std::unique_ptr<Event[]> events;  // not swept yet (in the grid walk, a min-heap on t)
     std::unique_ptr<int[]> active;    // indices into spans, in increasing ball index
-    size_t capacity = 0;              // balls
+    size_t capacity = 0;              // spans
 
-    void Reserve(size_t balls) {
-        if (balls <= capacity) return;
-        spans.reset(new Span[balls]);
-        events.reset(new Event[2 * balls]);
-        active.reset(new int[balls]);
-        capacity = balls;
+    void Reserve(size_t count) {
+        if (count <= capacity) return;
+        spans.reset(new Span[count]);
+        events.reset(new Event[2 * count]);
+        active.reset(new int[count]);
+        capacity = count;
     }
 };
 
 // The largest value of s·q² over [ta, tb] for a span, q = 1 − ρ²/r² ∈ [0, 1] being largest at
 // the interval's point nearest to the closest approach; at most 0 for a negative strength.
-double TermPeak(double strength, double radius2, const Span& span, double dd, double ta,
-                double tb) {
+double TermPeak(double strength, double radius2, const Span& span, double ta, double tb) {
     if (strength < 0) return 0;
     const double gap = span.tClosest - std::clamp(span.tClosest, ta, tb);
-    const double q = 1 - (span.dist2 + dd * gap * gap) / radius2;
+    const double q = 1 - (span.dist2 + span.curvature * gap * gap) / radius2;
     return strength * q * q;
 }
+
+// The component of v across the unit vector n.
+Vec3 Across(const Vec3& v, const Vec3& n) { return v - n * Dot(v, n); }
 
 }  // namespace
 
@@ -93,11 +100,15 @@ MetaballSum::MetaballSum(double threshold, std::vector<Metaball> balls) : thresh
     std::vector<Bounds3> boxes;
     boxes.reserve(balls.size());
     for (const Metaball& b : balls) {
-        const double r2 = b.radius * b.radius;
-        balls_.push_back({b.centre, r2, 1 / r2, b.strength});
+        const double r2 = b.radius * b.radius, length2 = LengthSquared(b.axis);
+        const Vec3 unit = length2 > 0 ? b.axis / std::sqrt(length2) : Vec3{0, 0, 0};
+        balls_.push_back({b.centre, r2, 1 / r2, b.strength, b.axis, length2, unit});
         const Vec3 r{b.radius, b.radius, b.radius};
-        boxes.emplace_back(b.centre - r, b.centre + r);
-        bounds_.Extend(boxes.back());
+        Bounds3 box(b.centre - r, b.centre + r);
+        box.Extend(Bounds3(b.centre + b.axis - r, b.centre + b.axis + r));
+        boxes.push_back(box);
+        bounds_.Extend(box);
+        maxSpans_ += length2 > 0 ? 3 : 1;
     }
     if (balls_.size() <= kLinearSearchMax) return;
     BuildGrid(boxes);
@@ -187,11 +198,12 @@ void MetaballSum::ForBallsAt(const Vec3& p, Visit&& visit) const {
 
 std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double tMax,
                                              int* quarticsSolved) const {
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
     if (quarticsSolved) *quarticsSolved = 0;
     const double dd = LengthSquared(ray.dir);
     if (!(dd > 0)) return std::nullopt;
     thread_local Scratch scratch;
-    scratch.Reserve(balls_.size());
+    scratch.Reserve(maxSpans_);
     Span* const spans = scratch.spans.get();
     Event* const pending = scratch.events.get();
     int* const active = scratch.active.get();
@@ -199,18 +211,62 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
     const auto later = [](const Event& a, const Event& b) { return a.t > b.t; };
     double peakSum = 0, strengthSum = 0;  // over the balls met
 
-    // Ball i's span along (tMin, tMax), when its sphere of influence meets it.
-    const auto spanOf = [&](int i, Span& span) {
+    // Calls emit(span) for each piece of (tMin, tMax) inside ball i's support.
+    const auto spansOf = [&](int i, auto&& emit) {
         const Ball& b = balls_[i];
-        // |o + t d − c|² = r²: solved around the closest approach for stability.
-        const Vec3 oc = ray.origin - b.centre;
-        const double tClosest = -Dot(oc, ray.dir) / dd;
-        const double dist2 = LengthSquared(oc + ray.dir * tClosest);
-        const double h2 = (b.radius2 - dist2) / dd;
-        if (h2 <= 0) return false;
-        const double h = std::sqrt(h2);
-        span = {i, tClosest, dist2, std::max(tClosest - h, tMin), std::min(tClosest + h, tMax)};
-        return span.enter < span.exit;
+        // The span about a centre c on [lo, hi]: |o + t d − c|² = r² solved around the
+        // closest approach for stability.
+        const auto sphere = [&](Piece piece, const Vec3& c, double lo, double hi) {
+            const Vec3 oc = ray.origin - c;
+            const double tClosest = -Dot(oc, ray.dir) / dd;
+            const double dist2 = LengthSquared(oc + ray.dir * tClosest);
+            const double h2 = (b.radius2 - dist2) / dd;
+            if (h2 <= 0) return;
+            const double h = std::sqrt(h2);
+            const Span span{i, piece, tClosest, dist2, dd, std::max(tClosest - h, lo),
+                            std::min(tClosest + h, hi)};
+            if (span.enter < span.exit) emit(span);
+        };
+        if (b.axisLength2 == 0) {
+            sphere(kSphereAtCentre, b.centre, tMin, tMax);
+            return;
+        }
+        // The axis parameter of the ray's projection, u(t) = u0 + u1·t (0 at the centre, 1
+        // at the far end), splits the ray into the pieces u < 0, 0 <= u <= 1, u > 1.
+        const double u0 = Dot(ray.origin - b.centre, b.axis) / b.axisLength2;
+        const double u1 = Dot(ray.dir, b.axis) / b.axisLength2;
+        double atCentre = -kInfinity, atEnd = kInfinity;  // t where u = 0 and u = 1
+        if (u1 != 0) {
+            atCentre = -u0 / u1;
+            atEnd = (1 - u0) / u1;
+        } else if (u0 < 0 || u0 > 1) {
+            sphere(u0 < 0 ? kSphereAtCentre : kSphereAtEnd,
+                   u0 < 0 ? b.centre : b.centre + b.axis, tMin, tMax);
+            return;
+        }
+        const double lo = std::max(std::min(atCentre, atEnd), tMin);
+        const double hi = std::min(std::max(atCentre, atEnd), tMax);
+        const bool forward = u1 >= 0;  // the ray meets the centre's cap first
+        // Cap before the axis piece, axis piece, cap after.
+        sphere(forward ? kSphereAtCentre : kSphereAtEnd,
+               forward ? b.centre : b.centre + b.axis, tMin, std::min(lo, tMax));
+        if (lo < hi) {
+            // ρ² = |w⊥ + t·d⊥|², the parts of o − centre and d across the axis.
+            const Vec3 w = Across(ray.origin - b.centre, b.axisUnit);
+            const Vec3 across = Across(ray.dir, b.axisUnit);
+            const double curvature = LengthSquared(across);
+            const double tClosest = curvature > 0 ? -Dot(w, across) / curvature : 0;
+            const double dist2 = LengthSquared(w + across * tClosest);
+            if (dist2 < b.radius2) {
+                const double h = curvature > 0 ? std::sqrt((b.radius2 - dist2) / curvature)
+                                               : kInfinity;
+                const Span span{i, kAxis, tClosest, dist2, curvature,
+                                std::max(tClosest - h, lo), std::min(tClosest + h, hi)};
+                if (span.enter < span.exit) emit(span);
+            }
+        }
+        sphere(forward ? kSphereAtEnd : kSphereAtCentre,
+               forward ? b.centre + b.axis : b.centre, std::max(hi, tMin), tMax);
     };
     const auto add = [&](const Span& span) {
         const int k = spanCount++;
@@ -231,21 +287,29 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
         for (int a = 0; a < activeCount; ++a) {
             const int k = active[a];
             const Ball& b = balls_[spans[k].ball];
-            bound += TermPeak(b.strength, b.radius2, spans[k], dd, ta, tb);
+            bound += TermPeak(b.strength, b.radius2, spans[k], ta, tb);
             activeStrength += std::abs(b.strength);
         }
         if (bound + kFieldBoundMargin * (threshold_ + activeStrength) < threshold_) {
             return std::nullopt;
         }
         // Quartic in u = t − ta: Σ s_i·q_i(u)² − T, with q_i = 1 − ρ_i²(u)/r_i² and
-        // ρ_i² = |d|²u² + 2(o'−c)·d u + |o'−c|², o' = the point at ta.
+        // ρ_i² = |d|²u² + 2(o'−c)·d u + |o'−c|², o' = the point at ta (on an axis piece,
+        // d and o' − c taken across the axis).
         const Vec3 start = ray.At(ta);
         double c[5] = {-threshold_, 0, 0, 0, 0};  // ascending powers
         for (int a = 0; a < activeCount; ++a) {
-            const Ball& b = balls_[spans[active[a]].ball];
-            const Vec3 oc = start - b.centre;
-            const double a2 = -dd * b.inverseRadius2,
-                         a1 = -2 * Dot(oc, ray.dir) * b.inverseRadius2,
+            const Span& span = spans[active[a]];
+            const Ball& b = balls_[span.ball];
+            Vec3 oc = start - b.centre, dir = ray.dir;
+            if (span.piece == kSphereAtEnd) {
+                oc = start - (b.centre + b.axis);
+            } else if (span.piece == kAxis) {
+                oc = Across(oc, b.axisUnit);
+                dir = Across(dir, b.axisUnit);
+            }
+            const double a2 = -span.curvature * b.inverseRadius2,
+                         a1 = -2 * Dot(oc, dir) * b.inverseRadius2,
                          a0 = 1 - LengthSquared(oc) * b.inverseRadius2;
             c[4] += b.strength * a2 * a2;
             c[3] += b.strength * 2 * a2 * a1;
@@ -266,7 +330,8 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
 
     // One step of the sweep along the ray: the event's interval [cursor, event.t], if some
     // ball is active there, is solved (the events are taken in increasing t, and every
-    // event before event.t is known), then the event is applied.
+    // event before event.t is known), then the event is applied. (A capsule's pieces do
+    // not overlap: at most one of them is active at a time.)
     double cursor = 0;  // the last event swept; read only while some ball is active
     const auto sweep = [&](const Event& event) -> std::optional<double> {
         if (activeCount > 0 && event.t > cursor) {
@@ -286,14 +351,10 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
         cursor = event.t;
         return std::nullopt;
     };
-    constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
     if (grid_.IsEmpty()) {
         // Every ball the ray meets, then one sweep.
-        Span span;
-        const auto visit = [&](int i) {
-            if (spanOf(i, span)) add(span);
-        };
+        const auto visit = [&](int i) { spansOf(i, add); };
         if (hierarchy_.IsEmpty()) {
             for (size_t i = 0; i < balls_.size(); ++i) visit(static_cast<int>(i));
         } else {
@@ -344,13 +405,12 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
         const double exit = last ? kInfinity : next[axis];
         const int c = grid_.Index(cell[0], cell[1], cell[2]);
         for (uint32_t k = grid_.cellStart[c]; k < grid_.cellStart[c + 1]; ++k) {
-            Span span;
-            if (spanOf(static_cast<int>(grid_.cellBalls[k]), span) && span.enter >= entry &&
-                span.enter < exit) {
+            spansOf(static_cast<int>(grid_.cellBalls[k]), [&](const Span& span) {
+                if (span.enter < entry || span.enter >= exit) return;  // another cell's
                 add(span);
                 std::push_heap(pending, pending + pendingCount - 1, later);
                 std::push_heap(pending, pending + pendingCount, later);
-            }
+            });
         }
         // Every ball entering before `exit` is known: sweep the events up to it.
         while (pendingCount > 0 && pending[0].t <= exit) {
@@ -365,11 +425,17 @@ std::optional<double> MetaballSum::FirstRoot(const Ray& ray, double tMin, double
     }
 }
 
+Vec3 MetaballSum::NearestSkeletonPoint(const Ball& b, const Vec3& p) {
+    if (b.axisLength2 == 0) return b.centre;
+    const double u = Dot(p - b.centre, b.axis) / b.axisLength2;
+    return b.centre + b.axis * std::clamp(u, 0.0, 1.0);
+}
+
 double MetaballSum::Value(const Vec3& p) const {
     double f = 0;
     ForBallsAt(p, [&](int i) {
         const Ball& b = balls_[i];
-        const double q = 1 - LengthSquared(p - b.centre) / b.radius2;
+        const double q = 1 - LengthSquared(p - NearestSkeletonPoint(b, p)) / b.radius2;
         if (q > 0) f += b.strength * q * q;
     });
     return f;
@@ -377,11 +443,11 @@ double MetaballSum::Value(const Vec3& p) const {
 
 Vec3 MetaballSum::Gradient(const Vec3& p) const {
     // ∇[s(1 − ρ²/r²)²] = −(4s/r²)(1 − ρ²/r²)(X − c) = (4·c4·ρ² + 2·c2)(X − c) with c4 = s/r⁴,
-    // c2 = −2s/r², inside the ball.
+    // c2 = −2s/r², inside the ball, c the nearest skeleton point (∇ρ = (X − c)/ρ).
     Vec3 g;
     ForBallsAt(p, [&](int i) {
         const Ball& b = balls_[i];
-        const Vec3 d = p - b.centre;
+        const Vec3 d = p - NearestSkeletonPoint(b, p);
         const double rho2 = LengthSquared(d);
         if (rho2 >= b.radius2) return;
         const double c4 = b.strength / (b.radius2 * b.radius2), c2 = -2 * b.strength / b.radius2;
@@ -395,7 +461,7 @@ int MetaballSum::Predominant(const Vec3& p) const {
     double bestValue = 0;
     ForBallsAt(p, [&](int i) {  // increasing index: a later ball must be strictly larger
         const Ball& b = balls_[i];
-        const double q = 1 - LengthSquared(p - b.centre) / b.radius2;
+        const double q = 1 - LengthSquared(p - NearestSkeletonPoint(b, p)) / b.radius2;
         if (q <= 0) return;
         const double value = b.strength * q * q;
         if (best < 0 || value > bestValue) {

@@ -1,11 +1,15 @@
-// A sum of metaballs F(X) = Σ s_i (1 − |X − c_i|²/r_i²)² (each term 0 beyond its radius r_i)
-// and the exact first crossing of F = T along a ray, by one quartic per interval: the
-// method of Rayshade 4.0's blob (spec §3.9), shared by the `blob` primitive and the implicit
-// primitive's `method polynomial`.
+// A sum of metaballs F(X) = Σ s_i (1 − ρ_i(X)²/r_i²)² (each term 0 beyond its radius r_i),
+// ρ_i the distance to ball i's skeleton, a point or a segment (a capsule), and the exact
+// first crossing of F = T along a ray, by one quartic per interval: the method of Rayshade
+// 4.0's blob (spec §3.9), shared by the `blob` primitive and the implicit primitive's
+// `method polynomial`.
 //
-// Along a ray o + t·d, |o + t·d − c|² is a quadratic in t, so each term is a quartic in t
-// between the ray's entry into and exit from the ball's sphere of influence; between two
-// consecutive entry/exit events the set of active balls is fixed and F − T is one quartic.
+// Along a ray o + t·d, ρ² is a quadratic in t: for a point c, |o + t·d − c|²; for a segment
+// [a, b], the same about a or b where the ray's projection on the axis falls before a or
+// after b, and the squared distance to the axis line between (three pieces of the ray,
+// split where the projection crosses a and b). So each term is a quartic in t on each piece
+// inside its support; between two consecutive entry/exit/piece events the active pieces
+// are fixed and F − T is one quartic.
 // Each interval's quartic is formed in u = t − t_start with the ray's origin moved to the
 // interval's start (no O(t⁴) cancellation for distant cameras, research note §8), and its
 // roots in [0, t_end − t_start] come in ascending order; the first one in (tMin, tMax) is
@@ -39,6 +43,8 @@ struct Metaball {
     Vec3 centre;
     double radius;    // > 0
     double strength;  // s, non-zero
+    // A capsule's segment runs from centre to centre + axis; zero for a ball.
+    Vec3 axis{0, 0, 0};
 };
 
 class MetaballSum {
@@ -70,10 +76,15 @@ class MetaballSum {
     // Ball data in the form the intersection uses.
     struct Ball {
         Vec3 centre;
-        double radius2;       // r²
+        double radius2;         // r²
         double inverseRadius2;  // 1/r²
         double strength;
+        Vec3 axis;              // zero for a point
+        double axisLength2;     // |axis|²
+        Vec3 axisUnit;          // axis / |axis| (zero for a point)
     };
+    // The point of ball i's skeleton nearest to p.
+    static Vec3 NearestSkeletonPoint(const Ball& b, const Vec3& p);
     // A uniform grid over bounds_: cell c lists, in increasing index, every ball whose box
     // (padded by kGridPadding of the grid's extent) overlaps it, in
     // cellBalls[cellStart[c] .. cellStart[c + 1]).
@@ -96,6 +107,7 @@ class MetaballSum {
 
     double threshold_;
     std::vector<Ball> balls_;
+    size_t maxSpans_ = 0;  // the most spans a ray can give: 1 per ball, 3 per capsule
     Bounds3 bounds_;
     // At most one of the two is built: none for a few balls (a plain loop).
     Grid grid_;

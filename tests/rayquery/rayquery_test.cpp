@@ -692,7 +692,8 @@ TEST(RayQuery, PolynomialMethodOnBlobsOnly) {
     RunResult wrong =
         RunText(SphereScene({0, 0, 0}, "field quadratic 0.8 1 2"), "", "-m polynomial");
     EXPECT_EQ(wrong.status, 1);
-    EXPECT_NE(wrong.stdErr.find("method polynomial needs point skeletons with the blob kernel"),
+    EXPECT_NE(wrong.stdErr.find("method polynomial needs point or segment skeletons with the "
+                                "blob kernel"),
               std::string::npos)
         << wrong.stdErr;
     RunResult inScene =

@@ -37,7 +37,8 @@ const char* ImplicitMethodName(ImplicitMethod method);
 std::string ImplicitMethodNames();
 
 // What `method auto` (the scene default) runs: polynomial where it searches the same surface
-// as patches exactly, i.e. every term is a point with the blob kernel and every pair blends
+// as patches exactly, i.e. every term is a point or segment with the blob kernel and every
+// pair blends
 // (no blend or contact statements: the union of automatic patches is the plain sum's
 // surface, patch.h); patches otherwise. The quartics find the first root to the polynomial
 // solver's accuracy with no octree to build, and cost O(log N) per ray for N skeletons.

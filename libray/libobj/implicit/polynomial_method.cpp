@@ -7,11 +7,12 @@ namespace rs {
 
 std::string CheckPolynomialTerms(const std::vector<FieldTerm>& terms) {
     for (const FieldTerm& t : terms) {
-        if (!std::holds_alternative<PointSkeleton>(t.skeleton) ||
-            t.kernel.Kind() != KernelKind::Blob) {
+        const bool pointOrSegment = std::holds_alternative<PointSkeleton>(t.skeleton) ||
+                                    std::holds_alternative<SegmentSkeleton>(t.skeleton);
+        if (!pointOrSegment || t.kernel.Kind() != KernelKind::Blob) {
             const bool blob = t.kernel.Kind() == KernelKind::Blob;
-            return StringPrintf("method polynomial needs point skeletons with the blob kernel "
-                                "('field blob ...'); skeleton '%s' is a %s%s",
+            return StringPrintf("method polynomial needs point or segment skeletons with the "
+                                "blob kernel ('field blob ...'); skeleton '%s' is a %s%s",
                                 t.name.c_str(), SkeletonKindName(t.skeleton),
                                 blob ? "" : " with a Gascuel kernel");
         }
@@ -25,8 +26,13 @@ std::vector<Metaball> Metaballs(const Field& field) {
     std::vector<Metaball> balls;
     balls.reserve(field.Terms().size());
     for (const FieldTerm& t : field.Terms()) {
-        balls.push_back({std::get<PointSkeleton>(t.skeleton).center, t.kernel.Radius(),
-                         t.weight * t.kernel.Strength()});
+        const double strength = t.weight * t.kernel.Strength();
+        if (const auto* segment = std::get_if<SegmentSkeleton>(&t.skeleton)) {
+            balls.push_back({segment->a, t.kernel.Radius(), strength, segment->b - segment->a});
+        } else {
+            balls.push_back({std::get<PointSkeleton>(t.skeleton).center, t.kernel.Radius(),
+                             strength});
+        }
     }
     return balls;
 }

@@ -4,8 +4,9 @@
 // libobj's polynomial solver (libobj/polynomial.h), which the pure-math target ray_implicit
 // cannot link.
 //
-// Terms: point skeletons with the blob kernel s(1 − r²/R²)² only (CheckPolynomialTerms),
-// each a metaball of strength w·s (negative weights carve). The search is MetaballSum's
+// Terms: point and segment skeletons with the blob kernel s(1 − r²/R²)² only
+// (CheckPolynomialTerms), each a metaball (a capsule for a segment) of strength w·s
+// (negative weights carve). The search is MetaballSum's
 // (libobj/metaball_sum.h, shared with the `blob` primitive): one quartic per interval
 // between the ray's entries into and exits from the spheres of radius R, formed with the
 // origin moved to the interval's start (no cancellation for distant cameras, research note
@@ -28,8 +29,8 @@
 
 namespace rs {
 
-// Empty when every term is a point skeleton with the blob kernel; otherwise a message
-// naming the first term that is not.
+// Empty when every term is a point or segment skeleton with the blob kernel; otherwise a
+// message naming the first term that is not.
 std::string CheckPolynomialTerms(const std::vector<FieldTerm>& terms);
 
 class PolynomialMethod final : public IntersectionMethod {

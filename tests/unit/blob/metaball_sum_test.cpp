@@ -150,22 +150,32 @@ std::vector<Metaball> Chain(Rng& rng, int count) {
     return balls;
 }
 
+// The squared distance from p to a ball's skeleton (its centre, or the segment from
+// centre to centre + axis), written out here independently of MetaballSum.
+double SkeletonDistance2(const Metaball& b, const Vec3& p) {
+    const double length2 = LengthSquared(b.axis);
+    const double u = length2 > 0 ? std::clamp(Dot(p - b.centre, b.axis) / length2, 0.0, 1.0) : 0;
+    return LengthSquared(p - (b.centre + b.axis * u));
+}
+
 // The first crossing of F = T along the ray beyond tMin, by sampling F (summed here from
-// its definition) every `step` over the part of the ray inside some ball and bisecting the
-// first sign change to 1e-13; +∞ when no sample is inside. Independent of MetaballSum;
-// misses only features thinner than `step`. The ray starts outside every ball.
+// its definition) every `step` over the part of the ray inside some ball's bounding sphere
+// and bisecting the first sign change to 1e-13; +∞ when no sample is inside. Independent
+// of MetaballSum; misses only features thinner than `step`. The ray starts outside every
+// ball.
 double SampledFirstCrossing(const std::vector<Metaball>& balls, const Ray& ray, double tMin,
                             double step) {
-    std::vector<const Metaball*> near;  // the balls the ray's line meets
+    std::vector<const Metaball*> near;  // the balls whose bounding sphere the line meets
     const double dd = Dot(ray.dir, ray.dir);
     double tStart = std::numeric_limits<double>::infinity(), tEnd = tMin;
     for (const Metaball& b : balls) {
-        const Vec3 oc = ray.origin - b.centre;
+        const double reach = b.radius + 0.5 * Length(b.axis);
+        const Vec3 oc = ray.origin - (b.centre + b.axis * 0.5);
         const double tc = -Dot(oc, ray.dir) / dd;
         const double dist2 = LengthSquared(oc + ray.dir * tc);
-        if (dist2 >= b.radius * b.radius) continue;
+        if (dist2 >= reach * reach) continue;
         near.push_back(&b);
-        const double h = std::sqrt((b.radius * b.radius - dist2) / dd);
+        const double h = std::sqrt((reach * reach - dist2) / dd);
         tStart = std::min(tStart, tc - h);
         tEnd = std::max(tEnd, tc + h);
     }
@@ -173,7 +183,7 @@ double SampledFirstCrossing(const std::vector<Metaball>& balls, const Ray& ray, 
         const Vec3 p = ray.At(t);
         double f = 0;
         for (const Metaball* b : near) {
-            const double q = 1 - LengthSquared(p - b->centre) / (b->radius * b->radius);
+            const double q = 1 - SkeletonDistance2(*b, p) / (b->radius * b->radius);
             if (q > 0) f += b->strength * q * q;
         }
         return f - kThreshold;
@@ -226,6 +236,93 @@ TEST(MetaballSum, GridFindsEveryOverlappingBallOfAnInterval) {
     MetaballSum sum(kThreshold, balls);
     ASSERT_EQ(sum.SearchStructure(), MetaballSum::Search::Grid);
     EXPECT_GT(CheckAgainstSampledField(sum, balls, sum.Bounds(), rng, 300), 150);
+}
+
+// A chain of overlapping capsules: segments of length 1.5 end to end along a persistent
+// random walk, radius 1 (the skeletons of the POV-Ray kit's segment chains).
+std::vector<Metaball> CapsuleChain(Rng& rng, int count) {
+    std::vector<Metaball> capsules;
+    Vec3 p{0, 0, 0}, d{1, 0, 0};
+    for (int i = 0; i < count; ++i) {
+        d = Normalize(d + RandomDirection(rng) * 0.5);
+        capsules.push_back({p, 1, 0.7 + 0.6 * rng.Uniform(), d * 1.5});
+        p += d * 1.5;
+    }
+    return capsules;
+}
+
+TEST(MetaballSum, CapsuleChainsMatchTheSampledField) {
+    Rng rng(67);
+    const std::vector<Metaball> capsules = CapsuleChain(rng, 200);
+    MetaballSum sum(kThreshold, capsules);
+    ASSERT_EQ(sum.SearchStructure(), MetaballSum::Search::Grid);
+    EXPECT_GT(CheckAgainstSampledField(sum, capsules, sum.Bounds(), rng, 300), 150);
+    // Through the loop (a few capsules) too.
+    const std::vector<Metaball> few(capsules.begin(), capsules.begin() + 6);
+    MetaballSum small(kThreshold, few);
+    ASSERT_EQ(small.SearchStructure(), MetaballSum::Search::Loop);
+    EXPECT_GT(CheckAgainstSampledField(small, few, small.Bounds(), rng, 200), 100);
+}
+
+// A lone capsule is the analytic capsule of radius r·sqrt(1 − sqrt(T/s)) around its
+// segment: rays along and across the axis, and from inside, hit it where a cylinder and
+// sphere computation says; its gradient points away from the segment.
+TEST(MetaballSum, LoneCapsuleIsTheAnalyticCapsule) {
+    const Metaball capsule{{1, 2, 3}, 1, 1, {2, 0, 0}};  // segment (1,2,3)-(3,2,3)
+    MetaballSum sum(kThreshold, {capsule});
+    const double r = SurfaceRadius(capsule);
+    struct Case {
+        Ray ray;
+        double t;
+    };
+    const Case cases[] = {
+        {{{2, -5, 3}, {0, 1, 0}, 0}, 7 - r},                         // across the middle
+        {{{2.5, 2, 10}, {0, 0, -2}, 0}, (7 - r) / 2},                // across, non-unit d
+        {{{-5, 2, 3}, {1, 0, 0}, 0}, 6 - r},                         // along the axis: cap
+        {{{10, 2.1, 3}, {-1, 0, 0}, 0}, 7 - std::sqrt(r * r - 0.01)},  // along, off axis
+        {{{2, 2, 3}, {0, 0, 1}, 0}, r},                              // from inside: exit
+        {{{0.5, 2, -5}, {0, 0, 1}, 0}, 8 - std::sqrt(r * r - 0.25)},   // through a cap
+    };
+    for (const Case& c : cases) {
+        const std::optional<double> t = sum.FirstRoot(c.ray, 1e-5, 1e9);
+        ASSERT_TRUE(t.has_value()) << c.ray.origin.x << " " << c.ray.origin.z;
+        EXPECT_NEAR(*t, c.t, 1e-10) << c.ray.origin.x << " " << c.ray.origin.z;
+        const Vec3 p = c.ray.At(*t);
+        const Vec3 outward = Normalize(p - Vec3{std::clamp(p.x, 1.0, 3.0), 2, 3});
+        EXPECT_NEAR(Length(Normalize(-sum.Gradient(p)) - outward), 0, 1e-9);
+        EXPECT_EQ(sum.Predominant(p), 0);
+    }
+    EXPECT_FALSE(sum.FirstRoot({{2, -5, 3 + 1.001 * r}, {0, 1, 0}, 0}, 1e-5, 1e9).has_value());
+}
+
+// A ray along a row of capsules crosses three pieces of each (cap, axis, cap): nine spans
+// from three capsules, which the search must hold (one span per ball would not do).
+TEST(MetaballSum, RayAlongARowOfCapsulesCrossesEveryPiece) {
+    std::vector<Metaball> row;
+    for (int i = 0; i < 3; ++i) row.push_back({{4.0 * i, 0, 0}, 1, 1, {3, 0, 0}});
+    for (int copies : {1, 4}) {  // the loop, and the grid (a copy of the row far away)
+        std::vector<Metaball> balls;
+        for (int c = 0; c < copies; ++c) {
+            for (Metaball b : row) {
+                b.centre.y += 10.0 * c;
+                balls.push_back(b);
+            }
+        }
+        MetaballSum sum(kThreshold, balls);
+        const double r = SurfaceRadius(row[0]);
+        // Rightwards, from inside the first capsule: the gaps of 1 between capsules are
+        // bridged (each side gives (1 − 0.5²)² > T/2 at their middle), so the ray leaves at
+        // the last capsule's cap, x = 11 + r.
+        const std::optional<double> exit = sum.FirstRoot({{1, 0, 0}, {1, 0, 0}, 0}, 1e-5, 1e9);
+        ASSERT_TRUE(exit.has_value()) << copies;
+        EXPECT_NEAR(*exit, 10 + r, 1e-10) << copies;
+        // Leftwards from beyond the row: the last capsule's cap.
+        const std::optional<double> hit = sum.FirstRoot({{20, 0, 0}, {-1, 0, 0}, 0}, 1e-5, 1e9);
+        ASSERT_TRUE(hit.has_value()) << copies;
+        EXPECT_NEAR(*hit, 20 - (11 + r), 1e-10) << copies;
+        // Along the axis line but past every capsule's support: nothing.
+        EXPECT_FALSE(sum.FirstRoot({{20, 0, 0}, {1, 0, 0}, 0}, 1e-5, 1e9).has_value());
+    }
 }
 
 // Balls crowded into a small part of their box (a cluster and one ball far away): the

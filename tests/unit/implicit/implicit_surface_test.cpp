@@ -285,12 +285,14 @@ TEST(ImplicitSurface, MethodStatementSelectsTheBaselines) {
     EXPECT_NE(blended.warnings[0].find("'method sphere'"), std::string::npos);
 }
 
-// Without a method statement (or with `method auto`), blob-kernel points that all blend are
-// searched by polynomial, and its hits carry the automatic patch of the predominant skeleton:
-// the same surface and the same patch names as method patches on random rays.
+// Without a method statement (or with `method auto`), blob-kernel points and segments that
+// all blend are searched by polynomial, and its hits carry the automatic patch of the
+// predominant skeleton: the same surface and the same patch names as method patches on
+// random rays.
 TEST(ImplicitSurface, AutoMethodIsPolynomialWithThePatchesOfMethodPatches) {
     const std::string body = "threshold 0.5 field blob 1 1 point a -0.4 0 0 point b 0.45 0.1 0 "
-                             "point c 0 0.5 0.2 point d 0.1 -0.2 0.6 weight -0.3 ";
+                             "point c 0 0.5 0.2 point d 0.1 -0.2 0.6 weight -0.3 "
+                             "segment e 0.2 -0.5 -0.3 0.6 -0.1 -0.4 field blob 0.8 0.7 ";
     for (const char* method : {"", "method auto "}) {
         auto automatic = Parse(body + method + "end");
         auto patches = Parse(body + "method patches tolerance 1e-10 end");
@@ -326,7 +328,7 @@ TEST(ImplicitSurface, MethodErrors) {
     for (const char* text : {"method bisection point a 0 0 0 end",
                              "method march 0 point a 0 0 0 end",
                              "method polynomial point a 0 0 0 end",
-                             "method polynomial field blob 1 1 segment s 0 0 0 1 0 0 end"}) {
+                             "method polynomial field blob 1 1 triangle t 0 0 0 1 0 0 0 1 0 end"}) {
         TokenReader reader(text);
         EXPECT_THROW(ImplicitSurface::Create(reader), FatalError) << text;
     }

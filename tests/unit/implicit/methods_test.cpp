@@ -186,10 +186,13 @@ TEST(ImplicitMethods, PolynomialFarCamera) {
 
 TEST(ImplicitMethods, PolynomialRejectsOtherKernelsAndSkeletons) {
     std::vector<FieldTerm> gascuel = {{"g", PointSkeleton{}, Kernel::GascuelQuadratic(1, 1, 2), 1}};
+    std::vector<FieldTerm> triangle = {{"t", TriangleSkeleton{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+                                        Kernel::Blob(1, 1), 1}};
     std::vector<FieldTerm> segment = {{"s", SegmentSkeleton{{0, 0, 0}, {1, 0, 0}},
                                        Kernel::Blob(1, 1), 1}};
     EXPECT_NE(CheckPolynomialTerms(gascuel).find("'g'"), std::string::npos);
-    EXPECT_NE(CheckPolynomialTerms(segment).find("'s' is a segment"), std::string::npos);
+    EXPECT_NE(CheckPolynomialTerms(triangle).find("'t' is a triangle"), std::string::npos);
+    EXPECT_EQ(CheckPolynomialTerms(segment), "");  // a capsule: piecewise quartic too
     EXPECT_EQ(MethodEntryOf(ImplicitMethod::Polynomial).check(gascuel),
               CheckPolynomialTerms(gascuel));
 }
@@ -212,15 +215,19 @@ TEST(ImplicitMethods, RegistryNamesRoundTrip) {
 }
 
 // Auto runs polynomial exactly when it searches the surface patches would: every term a
-// blob-kernel point and no blend or contact statements.
-TEST(ImplicitMethods, AutoIsPolynomialOnlyForBlobPointsThatAllBlend) {
+// blob-kernel point or segment and no blend or contact statements.
+TEST(ImplicitMethods, AutoIsPolynomialOnlyForBlobPointsAndSegmentsThatAllBlend) {
     const std::vector<FieldTerm> blobs{{"a", PointSkeleton{{0, 0, 0}}, Kernel::Blob(1, 1), 1},
                                        {"b", PointSkeleton{{1, 0, 0}}, Kernel::Blob(1, 1), -1}};
     EXPECT_EQ(ResolveAutoMethod(blobs, false), ImplicitMethod::Polynomial);
     EXPECT_EQ(ResolveAutoMethod(blobs, true), ImplicitMethod::Patches);
     std::vector<FieldTerm> withSegment = blobs;
     withSegment.push_back({"s", SegmentSkeleton{{0, 0, 0}, {1, 0, 0}}, Kernel::Blob(1, 1), 1});
-    EXPECT_EQ(ResolveAutoMethod(withSegment, false), ImplicitMethod::Patches);
+    EXPECT_EQ(ResolveAutoMethod(withSegment, false), ImplicitMethod::Polynomial);
+    std::vector<FieldTerm> withCircle = blobs;
+    withCircle.push_back(
+        {"c", CircleSkeleton{{0, 0, 0}, {0, 0, 1}, 1}, Kernel::Blob(1, 1), 1});
+    EXPECT_EQ(ResolveAutoMethod(withCircle, false), ImplicitMethod::Patches);
     std::vector<FieldTerm> withGascuel = blobs;
     withGascuel.push_back({"g", PointSkeleton{{0, 0, 0}}, Kernel::GascuelQuadratic(0.5, 2, 1.2), 1});
     EXPECT_EQ(ResolveAutoMethod(withGascuel, false), ImplicitMethod::Patches);
