@@ -33,7 +33,7 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry() {
         {"heightfield", HeightField::Create, "heightfield [surface] file"},
         {"implicit", ImplicitSurface::Create,
          "implicit [surface] [threshold T] [tolerance Eps] [octree depth [dratio]] "
-         "[method patches|kb89|march [step]|sphere|segment|polynomial|exact] [field ...] "
+         "[method auto|patches|kb89|march [step]|sphere|segment|polynomial|exact] [field ...] "
          "{point|segment|polyline|circle|triangle|box|cylinder Name ...} {blend Name Name...} end",
          ImplicitSurface::IsBlockWord},
     };

@@ -77,7 +77,7 @@ const char* UsageText() {
            "                resolutionPixels, samplesPerSide, rayDepth, sceneBytes, gridVoxels,\n"
            "                gridEntries, polylinePoints, octreeBytes\n"
            "  Implicit objects (every one, whatever its scene says):\n"
-           "  -M method     patches, kb89, march, sphere, segment, polynomial, exact\n"
+           "  -M method     auto, patches, kb89, march, sphere, segment, polynomial, exact\n"
            "  -I eps        root tolerance               -K depth     octree maximum depth\n"
            "  -J dratio     Dratio (patches)             -B step      march step\n"
            "  -H name=on|off  octree heuristic or search test: range, patch, 1, 1bis, 3, 3bis,\n"

@@ -669,7 +669,7 @@ TEST(RayQuery, MarchStepOverride) {
     }
 }
 
-// polynomial: blob-kernel points only; exact for a blob ball of radius R·sqrt(1 − sqrt(T/s)).
+// polynomial: blob-kernel points and segments only; exact for a blob ball of radius R·sqrt(1 − sqrt(T/s)).
 TEST(RayQuery, PolynomialMethodOnBlobsOnly) {
     const double s = 2, radius = 1.5;
     const double r = radius * std::sqrt(1 - std::sqrt(1 / s));
