@@ -137,15 +137,19 @@ TEST(MetaballSum, GridWalksAxisRaysAndFarCameras) {
     EXPECT_GT(hits, 100);
 }
 
-// A chain of overlapping balls (step 0.6, radius 1, a persistent random walk), so rays
-// cross intervals with several active balls, which the grid walk must all have found.
-std::vector<Metaball> Chain(Rng& rng, int count) {
+// A chain of overlapping skeletons along a persistent random walk, radius 1, strengths in
+// [0.7, 1.3]: points 0.6 apart, or segments of length 1.5 end to end (the skeletons of the
+// POV-Ray kit's chains). Rays cross intervals with several active balls, which the grid
+// walk must all have found.
+std::vector<Metaball> Chain(Rng& rng, int count, bool segments) {
+    const double step = segments ? 1.5 : 0.6;
     std::vector<Metaball> balls;
     Vec3 p{0, 0, 0}, d{1, 0, 0};
     for (int i = 0; i < count; ++i) {
-        balls.push_back({p, 1, 0.7 + 0.6 * rng.Uniform()});
         d = Normalize(d + RandomDirection(rng) * 0.5);
-        p += d * 0.6;
+        const double strength = 0.7 + 0.6 * rng.Uniform();
+        balls.push_back({p, 1, strength, segments ? d * step : Vec3{0, 0, 0}});
+        p += d * step;
     }
     return balls;
 }
@@ -232,33 +236,17 @@ int CheckAgainstSampledField(const MetaballSum& sum, const std::vector<Metaball>
 
 TEST(MetaballSum, GridFindsEveryOverlappingBallOfAnInterval) {
     Rng rng(53);
-    const std::vector<Metaball> balls = Chain(rng, 300);
-    MetaballSum sum(kThreshold, balls);
-    ASSERT_EQ(sum.SearchStructure(), MetaballSum::Search::Grid);
-    EXPECT_GT(CheckAgainstSampledField(sum, balls, sum.Bounds(), rng, 300), 150);
-}
-
-// A chain of overlapping capsules: segments of length 1.5 end to end along a persistent
-// random walk, radius 1 (the skeletons of the POV-Ray kit's segment chains).
-std::vector<Metaball> CapsuleChain(Rng& rng, int count) {
-    std::vector<Metaball> capsules;
-    Vec3 p{0, 0, 0}, d{1, 0, 0};
-    for (int i = 0; i < count; ++i) {
-        d = Normalize(d + RandomDirection(rng) * 0.5);
-        capsules.push_back({p, 1, 0.7 + 0.6 * rng.Uniform(), d * 1.5});
-        p += d * 1.5;
+    for (bool segments : {false, true}) {
+        const std::vector<Metaball> balls = Chain(rng, segments ? 200 : 300, segments);
+        MetaballSum sum(kThreshold, balls);
+        ASSERT_EQ(sum.SearchStructure(), MetaballSum::Search::Grid);
+        EXPECT_GT(CheckAgainstSampledField(sum, balls, sum.Bounds(), rng, 300), 150) << segments;
     }
-    return capsules;
 }
 
-TEST(MetaballSum, CapsuleChainsMatchTheSampledField) {
+TEST(MetaballSum, CapsulesThroughTheLoopMatchTheSampledField) {
     Rng rng(67);
-    const std::vector<Metaball> capsules = CapsuleChain(rng, 200);
-    MetaballSum sum(kThreshold, capsules);
-    ASSERT_EQ(sum.SearchStructure(), MetaballSum::Search::Grid);
-    EXPECT_GT(CheckAgainstSampledField(sum, capsules, sum.Bounds(), rng, 300), 150);
-    // Through the loop (a few capsules) too.
-    const std::vector<Metaball> few(capsules.begin(), capsules.begin() + 6);
+    const std::vector<Metaball> few = Chain(rng, 6, true);
     MetaballSum small(kThreshold, few);
     ASSERT_EQ(small.SearchStructure(), MetaballSum::Search::Loop);
     EXPECT_GT(CheckAgainstSampledField(small, few, small.Bounds(), rng, 200), 100);
@@ -336,7 +324,7 @@ TEST(MetaballSum, CrowdedBallsUseTheHierarchyWithTheSameAnswers) {
     const Bounds3 cluster({-1, -1, -1}, {13.5, 13.5, 13.5});
     EXPECT_GT(CheckRandomRays(sum, balls, cluster, rng, 2000), 500);
     // Overlapping balls too.
-    std::vector<Metaball> chain = Chain(rng, 300);
+    std::vector<Metaball> chain = Chain(rng, 300, false);
     const Bounds3 chainBox = MetaballSum(kThreshold, chain).Bounds();
     chain.push_back({{1000, 1000, 1000}, 1, 1.5});
     MetaballSum crowded(kThreshold, chain);
