@@ -64,7 +64,6 @@ class MetaballSum {
     int Predominant(const Vec3& p) const;
     // The box of the spheres of influence: F = 0 outside it.
     const Bounds3& Bounds() const { return bounds_; }
-    int Size() const { return static_cast<int>(balls_.size()); }
     // How the balls along a ray are found (see above).
     enum class Search { Loop, Grid, Hierarchy };
     Search SearchStructure() const {
