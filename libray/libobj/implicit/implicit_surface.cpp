@@ -5,8 +5,11 @@
 #include <chrono>
 #include <climits>
 #include <cmath>
-#include <map>
+#include <cstdint>
 #include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "libcommon/error.h"
 #include "libcommon/limits.h"
@@ -16,81 +19,151 @@ namespace rs {
 
 namespace {
 
+// The numbers of an implicit block, indexed in reading order: a plain value each, and the
+// expression of those that are animated (usually none).
+class DeclaredNumbers {
+  public:
+    size_t Size() const { return values_.size(); }
+    // Stores `v` at index Size().
+    size_t Add(AnimatedValue v) {
+        const size_t index = values_.size();
+        values_.push_back(v.value);
+        if (v.IsAnimated()) animated_.emplace_back(index, std::move(v.at));
+        return index;
+    }
+    bool IsAnimated(size_t index) const { return Expression(index) != nullptr; }
+    double At(size_t index, double time) const {
+        const std::function<double(double)>* at = Expression(index);
+        return at ? (*at)(time) : values_[index];
+    }
+
+  private:
+    const std::function<double(double)>* Expression(size_t index) const {
+        if (animated_.empty()) return nullptr;
+        const auto it = std::lower_bound(
+            animated_.begin(), animated_.end(), index,
+            [](const std::pair<size_t, std::function<double(double)>>& a, size_t i) {
+                return a.first < i;
+            });
+        return it != animated_.end() && it->first == index ? &it->second : nullptr;
+    }
+
+    std::vector<double> values_;
+    std::vector<std::pair<size_t, std::function<double(double)>>> animated_;  // by index
+};
+
 struct KernelSpec {
     KernelKind kind = KernelKind::GascuelQuadratic;
-    AnimatedValue params[3];  // thickness, stiffness, radius; blob: strength, radius
+    // Indices of the parameters in DeclaredNumbers: thickness, stiffness, radius; blob:
+    // strength, radius (paramCount 2).
+    size_t params[3] = {};
+    int paramCount = 3;
 };
 
-KernelSpec DefaultKernel() {
-    KernelSpec k;  // `field quadratic 1 1 2`: m = k(R − e) = 1
-    k.params[0].value = 1;
-    k.params[1].value = 1;
-    k.params[2].value = 2;
-    return k;
-}
+enum class SkeletonKind : uint8_t { Point, Segment, Polyline, Circle, Triangle, Box, Cylinder };
 
-// One skeleton as declared; its numbers in syntax order, possibly animated.
+struct SkeletonSyntax {
+    SkeletonKind kind;
+    const char* keyword;
+    int arity;  // count of numbers; -1 for polyline, whose point count comes first
+};
+
+constexpr SkeletonSyntax kSkeletonSyntax[] = {
+    {SkeletonKind::Point, "point", 3},       {SkeletonKind::Segment, "segment", 6},
+    {SkeletonKind::Polyline, "polyline", -1}, {SkeletonKind::Circle, "circle", 7},
+    {SkeletonKind::Triangle, "triangle", 9}, {SkeletonKind::Box, "box", 6},
+    {SkeletonKind::Cylinder, "cylinder", 7}};
+
+// One skeleton as declared; its numbers, weight and kernel parameters are indices in the
+// block's DeclaredNumbers.
 struct ElementSpec {
     std::string name;
-    std::string kind;
-    std::vector<AnimatedValue> numbers;
-    AnimatedValue weight;
-    KernelSpec kernel;
+    SkeletonKind kind = SkeletonKind::Point;
+    size_t firstNumber = 0, numberCount = 0;  // in syntax order
+    size_t weight = 0;
+    size_t kernel = 0;  // index in Declaration::kernels
 };
 
-bool IsAnimated(const ElementSpec& e) {
-    auto animated = [](const AnimatedValue& v) { return v.IsAnimated(); };
-    return std::any_of(e.numbers.begin(), e.numbers.end(), animated) || e.weight.IsAnimated() ||
-           std::any_of(std::begin(e.kernel.params), std::end(e.kernel.params), animated);
+// An implicit block's skeletons with the numbers and kernels they refer to.
+struct Declaration {
+    DeclaredNumbers numbers;
+    std::vector<KernelSpec> kernels;
+    std::vector<ElementSpec> elements;
+};
+
+bool IsAnimated(const Declaration& d, const ElementSpec& e) {
+    const KernelSpec& k = d.kernels[e.kernel];
+    for (size_t i = e.firstNumber; i < e.firstNumber + e.numberCount; ++i) {
+        if (d.numbers.IsAnimated(i)) return true;
+    }
+    for (int i = 0; i < k.paramCount; ++i) {
+        if (d.numbers.IsAnimated(k.params[i])) return true;
+    }
+    return d.numbers.IsAnimated(e.weight);
 }
 
-Kernel MakeKernel(const KernelSpec& k, double time) {
-    double a = k.params[0].At(time), b = k.params[1].At(time), c = k.params[2].At(time);
+Kernel MakeKernel(const KernelSpec& k, const DeclaredNumbers& numbers, double time) {
+    const double a = numbers.At(k.params[0], time), b = numbers.At(k.params[1], time);
     switch (k.kind) {
         case KernelKind::GascuelLinear:
-            return Kernel::GascuelLinear(a, b, c);
+            return Kernel::GascuelLinear(a, b, numbers.At(k.params[2], time));
         case KernelKind::GascuelQuadratic:
-            return Kernel::GascuelQuadratic(a, b, c);
+            return Kernel::GascuelQuadratic(a, b, numbers.At(k.params[2], time));
         default:
             return Kernel::Blob(a, b);
     }
 }
 
-// Builds the term at `time`; returns an error message instead when the skeleton or the
-// kernel is invalid.
-std::string MakeTerm(const ElementSpec& e, double time, FieldTerm& term) {
-    std::vector<double> n;
-    for (const AnimatedValue& v : e.numbers) n.push_back(v.At(time));
-    auto vec = [&n](size_t i) { return Vec3{n[i], n[i + 1], n[i + 2]}; };
+// Builds the term of `e` at `time`; returns an error message instead when the skeleton or
+// the kernel is invalid.
+std::string MakeTerm(const Declaration& d, const ElementSpec& e, double time, FieldTerm& term) {
+    auto n = [&](size_t i) { return d.numbers.At(e.firstNumber + i, time); };
+    auto vec = [&n](size_t i) { return Vec3{n(i), n(i + 1), n(i + 2)}; };
     const char* who = e.name.c_str();
-    if (e.kind == "point") {
-        term.skeleton = PointSkeleton{vec(0)};
-    } else if (e.kind == "segment") {
-        term.skeleton = SegmentSkeleton{vec(0), vec(3)};
-    } else if (e.kind == "polyline") {
-        PolylineSkeleton p;
-        for (size_t i = 0; i + 2 < n.size(); i += 3) p.points.push_back(vec(i));
-        term.skeleton = p;
-    } else if (e.kind == "circle") {
-        Vec3 normal = vec(4);
-        if (!(n[0] > 0) || LengthSquared(normal) == 0) {
-            return StringPrintf("skeleton '%s': circle needs a radius > 0 and a non-zero normal",
-                                who);
+    switch (e.kind) {
+        case SkeletonKind::Point:
+            term.skeleton = PointSkeleton{vec(0)};
+            break;
+        case SkeletonKind::Segment:
+            term.skeleton = SegmentSkeleton{vec(0), vec(3)};
+            break;
+        case SkeletonKind::Polyline: {
+            PolylineSkeleton p;
+            p.points.reserve(e.numberCount / 3);
+            for (size_t i = 0; i + 2 < e.numberCount; i += 3) p.points.push_back(vec(i));
+            term.skeleton = std::move(p);
+            break;
         }
-        term.skeleton = CircleSkeleton{vec(1), Normalize(normal), n[0]};
-    } else if (e.kind == "triangle") {
-        term.skeleton = TriangleSkeleton{vec(0), vec(3), vec(6)};
-    } else if (e.kind == "box") {
-        term.skeleton = BoxSkeleton{Min(vec(0), vec(3)), Max(vec(0), vec(3))};
-    } else {
-        if (!(n[0] >= 0)) {
-            return StringPrintf("skeleton '%s': cylinder radius must be >= 0", who);
+        case SkeletonKind::Circle: {
+            const double radius = n(0);
+            const Vec3 normal = vec(4);
+            if (!(radius > 0) || LengthSquared(normal) == 0) {
+                return StringPrintf(
+                    "skeleton '%s': circle needs a radius > 0 and a non-zero normal", who);
+            }
+            term.skeleton = CircleSkeleton{vec(1), Normalize(normal), radius};
+            break;
         }
-        term.skeleton = CylinderSkeleton{vec(1), vec(4), n[0]};
+        case SkeletonKind::Triangle:
+            term.skeleton = TriangleSkeleton{vec(0), vec(3), vec(6)};
+            break;
+        case SkeletonKind::Box: {
+            const Vec3 a = vec(0), b = vec(3);
+            term.skeleton = BoxSkeleton{Min(a, b), Max(a, b)};
+            break;
+        }
+        case SkeletonKind::Cylinder: {
+            const double radius = n(0);
+            if (!(radius >= 0)) {
+                return StringPrintf("skeleton '%s': cylinder radius must be >= 0", who);
+            }
+            term.skeleton = CylinderSkeleton{vec(1), vec(4), radius};
+            break;
+        }
     }
     term.name = e.name;
-    term.weight = e.weight.At(time);
-    term.kernel = MakeKernel(e.kernel, time);
+    term.weight = d.numbers.At(e.weight, time);
+    term.kernel = MakeKernel(d.kernels[e.kernel], d.numbers, time);
     if (!std::isfinite(term.weight)) {
         return StringPrintf("skeleton '%s': weight is not finite", who);
     }
@@ -98,35 +171,22 @@ std::string MakeTerm(const ElementSpec& e, double time, FieldTerm& term) {
     return status.ok ? std::string() : status.message;
 }
 
-KernelSpec ReadKernel(ArgReader& args) {
+// Reads the kernel of a `field` statement, storing its parameters in `numbers`.
+KernelSpec ReadKernel(ArgReader& args, DeclaredNumbers& numbers) {
     KernelSpec k;
-    int count = 3;
     if (args.Accept("linear")) {
         k.kind = KernelKind::GascuelLinear;
     } else if (args.Accept("quadratic")) {
         k.kind = KernelKind::GascuelQuadratic;
     } else if (args.Accept("blob")) {
         k.kind = KernelKind::Blob;
-        count = 2;
+        k.paramCount = 2;
     } else {
         args.Fail("expected linear, quadratic or blob after 'field'");
     }
-    for (int i = 0; i < count; ++i) k.params[i] = args.ReadAnimatedNumber();
+    for (int i = 0; i < k.paramCount; ++i) k.params[i] = numbers.Add(args.ReadAnimatedNumber());
     return k;
 }
-
-// Polyline skeletons hold at most 2^20 points.
-
-// Number count of each skeleton keyword (polyline: read separately).
-int SkeletonArity(const std::string& kind) {
-    static const std::map<std::string, int> arity = {
-        {"point", 3}, {"segment", 6}, {"circle", 7}, {"triangle", 9}, {"box", 6}, {"cylinder", 7}};
-    auto it = arity.find(kind);
-    return it == arity.end() ? -1 : it->second;
-}
-
-constexpr const char* kSkeletonKinds[] = {"point",    "segment", "polyline", "circle",
-                                          "triangle", "box",     "cylinder"};
 
 }  // namespace
 
@@ -136,8 +196,8 @@ bool ImplicitSurface::IsBlockWord(const std::string& word) {
                                               "contact",   "propagation", "end"};
     for (const char* w : kStatements)
         if (word == w) return true;
-    for (const char* w : kSkeletonKinds)
-        if (word == w) return true;
+    for (const SkeletonSyntax& s : kSkeletonSyntax)
+        if (word == s.keyword) return true;
     return false;
 }
 
@@ -151,8 +211,8 @@ bool PeekStatement(ArgReader& args) {
           "propagation"}) {
         if (args.Peek(word)) return true;
     }
-    for (const char* kind : kSkeletonKinds) {
-        if (args.Peek(kind)) return true;
+    for (const SkeletonSyntax& s : kSkeletonSyntax) {
+        if (args.Peek(s.keyword)) return true;
     }
     return args.PeekNumber();
 }
@@ -488,9 +548,15 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     bool autoTolerance = true;
     int maxDepth = options.octree.maxDepth;
     double dRatio = options.octree.dRatio, tolerance = options.octree.tolerance;
-    KernelSpec defaultKernel = DefaultKernel();
-    std::vector<ElementSpec> elements;
-    std::map<std::string, int> index;
+    Declaration declaration;
+    DeclaredNumbers& numbers = declaration.numbers;
+    std::vector<KernelSpec>& kernels = declaration.kernels;
+    std::vector<ElementSpec>& elements = declaration.elements;
+    const size_t one = numbers.Add({1, {}});
+    // `field quadratic 1 1 2` (m = k(R − e) = 1) until a `field` statement.
+    kernels.push_back({KernelKind::GascuelQuadratic, {one, one, numbers.Add({2, {}})}, 3});
+    size_t defaultKernel = 0;
+    std::unordered_map<std::string, int> index;
     std::vector<std::vector<std::string>> blends;
     std::vector<std::pair<std::string, std::string>> contacts;
     struct PropagationSpec {
@@ -532,7 +598,8 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
                 if (!(options.marchStep > 0)) args.Fail("the march step must be > 0");
             }
         } else if (args.Accept("field")) {
-            defaultKernel = ReadKernel(args);
+            kernels.push_back(ReadKernel(args, numbers));
+            defaultKernel = kernels.size() - 1;
         } else if (args.Accept("blend")) {
             std::vector<std::string> names{args.ReadName(), args.ReadName()};
             while (!PeekStatement(args)) names.push_back(args.ReadName());
@@ -553,21 +620,25 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
             }
             propagations.push_back(p);
         } else {
-            ElementSpec e;
-            for (const char* kind : kSkeletonKinds) {
-                if (args.Accept(kind)) {
-                    e.kind = kind;
+            const SkeletonSyntax* syntax = nullptr;
+            for (const SkeletonSyntax& s : kSkeletonSyntax) {
+                if (args.Accept(s.keyword)) {
+                    syntax = &s;
                     break;
                 }
             }
-            if (e.kind.empty()) {
+            if (!syntax) {
                 args.Fail("expected a skeleton (point, segment, polyline, circle, triangle, box, "
                           "cylinder), blend, contact, propagation, field, threshold, tolerance, "
                           "octree, method or end");
             }
+            ElementSpec e;
+            e.kind = syntax->kind;
             e.name = args.ReadName();
-            if (index.count(e.name)) args.Fail("skeleton name '" + e.name + "' used twice");
-            int count = SkeletonArity(e.kind);
+            if (!index.try_emplace(e.name, static_cast<int>(elements.size())).second) {
+                args.Fail("skeleton name '" + e.name + "' used twice");
+            }
+            int count = syntax->arity;
             if (count < 0) {
                 int points = args.ReadInt();
                 if (points < 2) args.Fail("polyline '" + e.name + "' needs at least 2 points");
@@ -580,19 +651,21 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
                                            maxPoints));
                 count = 3 * points;
             }
-            for (int i = 0; i < count; ++i) e.numbers.push_back(args.ReadAnimatedNumber());
-            e.weight.value = 1;
+            e.firstNumber = numbers.Size();
+            e.numberCount = static_cast<size_t>(count);
+            for (int i = 0; i < count; ++i) numbers.Add(args.ReadAnimatedNumber());
+            e.weight = one;
             e.kernel = defaultKernel;
             for (;;) {
                 if (args.Accept("weight")) {
-                    e.weight = args.ReadAnimatedNumber();
+                    e.weight = numbers.Add(args.ReadAnimatedNumber());
                 } else if (args.Accept("field")) {
-                    e.kernel = ReadKernel(args);
+                    kernels.push_back(ReadKernel(args, numbers));
+                    e.kernel = kernels.size() - 1;
                 } else {
                     break;
                 }
             }
-            index[e.name] = static_cast<int>(elements.size());
             elements.push_back(std::move(e));
         }
     }
@@ -655,10 +728,10 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     std::vector<FieldTerm> terms(elements.size());
     bool animated = false, anyPositive = false;
     for (size_t i = 0; i < elements.size(); ++i) {
-        std::string error = MakeTerm(elements[i], 0, terms[i]);
+        std::string error = MakeTerm(declaration, elements[i], 0, terms[i]);
         if (!error.empty()) args.Fail(error);
-        animated |= IsAnimated(elements[i]);
-        anyPositive |= terms[i].weight > 0 || elements[i].weight.IsAnimated();
+        animated |= IsAnimated(declaration, elements[i]);
+        anyPositive |= terms[i].weight > 0 || numbers.IsAnimated(elements[i].weight);
     }
     if (!anyPositive) {
         args.Warn("implicit object without a skeleton of positive weight, discarded");
@@ -673,10 +746,11 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     }
     auto surface = std::make_shared<ImplicitSurface>(std::move(terms), std::move(options));
     if (animated) {
-        surface->termsAt_ = [elements = std::move(elements)](double time) {
-            std::vector<FieldTerm> out(elements.size());
-            for (size_t i = 0; i < elements.size(); ++i) {
-                std::string error = MakeTerm(elements[i], time, out[i]);
+        surface->termsAt_ = [declaration = std::move(declaration)](double time) {
+            const std::vector<ElementSpec>& specs = declaration.elements;
+            std::vector<FieldTerm> out(specs.size());
+            for (size_t i = 0; i < specs.size(); ++i) {
+                std::string error = MakeTerm(declaration, specs[i], time, out[i]);
                 if (!error.empty()) {
                     Report(Severity::Abort, {}, "implicit object at time %g: %s", time,
                            error.c_str());
