@@ -243,7 +243,7 @@ bool StartsWith(const std::string& s, const char* prefix) {
 }  // namespace
 
 ImplicitSurface::ImplicitSurface(std::vector<FieldTerm> terms, ImplicitOptions options)
-    : terms_(std::move(terms)), options_(std::move(options)) {
+    : options_(std::move(options)), whole_(std::move(terms)) {
     static std::atomic<int> created{0};
     label_ = "Implicit object " + std::to_string(++created);
     auto reg = [this](const char* what) { return RegisterCounter(label_ + ": " + what); };
@@ -269,12 +269,13 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
     if (overrides.method) {
         const ImplicitMethod method =
             *overrides.method == ImplicitMethod::Auto
-                ? ResolveAutoMethod(terms_, options_.blendMode == BlendMode::Explicit ||
-                                                !options_.contacts.empty())
+                ? ResolveAutoMethod(whole_.Terms(),
+                                    options_.blendMode == BlendMode::Explicit ||
+                                        !options_.contacts.empty())
                 : *overrides.method;
         const MethodEntry& entry = MethodEntryOf(method);
         if (entry.check) {
-            std::string error = entry.check(terms_);
+            std::string error = entry.check(whole_.Terms());
             if (!error.empty()) return label_ + ": " + error;
         }
         options_.method = method;
@@ -301,7 +302,7 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
 
 std::string ImplicitSurface::PatchName(const PrimitiveHit& hit) const {
     if (hit.part < 0 || hit.part >= static_cast<int>(termOfPart_.size())) return {};
-    return terms_[termOfPart_[hit.part]].name;
+    return whole_.Terms()[termOfPart_[hit.part]].name;
 }
 
 namespace {
@@ -443,7 +444,7 @@ void ImplicitSurface::BuildTree(int i) const {
 }
 
 void ImplicitSurface::BuildStructures() {
-    whole_ = Field(terms_);
+    const std::vector<FieldTerm>& terms = whole_.Terms();
     patches_.clear();
     contacts_.clear();
     bounds_ = Bounds3();
@@ -454,10 +455,10 @@ void ImplicitSurface::BuildStructures() {
     }
     trees_.reset();
     baseline_.reset();
-    partOfTerm_.assign(terms_.size(), -1);
+    partOfTerm_.assign(terms.size(), -1);
     termOfPart_.clear();
-    for (size_t i = 0; i < terms_.size(); ++i) {
-        if (!(terms_[i].weight > 0)) continue;
+    for (size_t i = 0; i < terms.size(); ++i) {
+        if (!(terms[i].weight > 0)) continue;
         partOfTerm_[i] = static_cast<int>(termOfPart_.size());
         termOfPart_.push_back(static_cast<int>(i));
     }
@@ -473,7 +474,7 @@ void ImplicitSurface::BuildStructures() {
     }
     if (options_.method == ImplicitMethod::Kb89) {
         // The surface lies where some positive term is positive (F = T > 0).
-        for (const FieldTerm& t : terms_) {
+        for (const FieldTerm& t : terms) {
             if (t.weight > 0) bounds_.Extend(TermSupportBounds(t));
         }
         trees_ = std::make_unique<LazyTree[]>(1);
@@ -481,7 +482,7 @@ void ImplicitSurface::BuildStructures() {
     }
     std::vector<std::pair<int, int>> separate;
     for (const ContactPair& c : options_.contacts) separate.emplace_back(c.a, c.b);
-    patches_ = BuildPatches(terms_, options_.blendMode, options_.blendPairs, separate);
+    patches_ = BuildPatches(terms, options_.blendMode, options_.blendPairs, separate);
     trees_ = std::make_unique<LazyTree[]>(patches_.size());
     for (const Patch& p : patches_) bounds_.Extend(p.Box());
     if (!options_.contacts.empty()) {
@@ -492,7 +493,7 @@ void ImplicitSurface::BuildStructures() {
         for (const Patch& p : patches_) {
             trees.push_back(BuildPatchOctree(p, options_.threshold, PatchSettings(p)));
         }
-        contacts_ = ApplyContacts(terms_, options_.contacts, options_.propagations,
+        contacts_ = ApplyContacts(terms, options_.contacts, options_.propagations,
                                   options_.threshold, options_.octree, patches_, trees);
         for (size_t i = 0; i < trees.size(); ++i) {
             LazyTree& lazy = trees_[i];
@@ -541,17 +542,27 @@ void ImplicitSurface::BuildBvh(int index, int first, int count) {
     BuildBvh(left + 1, first + count / 2, count - count / 2);
 }
 
-std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
+namespace {
+
+// An implicit block as read: its options (the method possibly still Auto) and skeletons.
+struct ImplicitBlock {
     ImplicitOptions options;
+    Declaration declaration;
+    bool blendsOrContacts = false;
+};
+
+// Reads the block syntax of ImplicitSurface::Create, failing as it documents.
+ImplicitBlock ReadBlock(ArgReader& args) {
+    ImplicitBlock block;
+    ImplicitOptions& options = block.options;
     options.autoDepth = true;
     options.method = ImplicitMethod::Auto;  // resolved once the terms are known
     bool autoTolerance = true;
     int maxDepth = options.octree.maxDepth;
     double dRatio = options.octree.dRatio, tolerance = options.octree.tolerance;
-    Declaration declaration;
-    DeclaredNumbers& numbers = declaration.numbers;
-    std::vector<KernelSpec>& kernels = declaration.kernels;
-    std::vector<ElementSpec>& elements = declaration.elements;
+    DeclaredNumbers& numbers = block.declaration.numbers;
+    std::vector<KernelSpec>& kernels = block.declaration.kernels;
+    std::vector<ElementSpec>& elements = block.declaration.elements;
     const size_t one = numbers.Add({1, {}});
     // `field quadratic 1 1 2` (m = k(R − e) = 1) until a `field` statement.
     kernels.push_back({KernelKind::GascuelQuadratic, {one, one, numbers.Add({2, {}})}, 3});
@@ -724,47 +735,72 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     declared.autoTolerance = autoTolerance;
     options.patchesDRatio = dRatio;
     options.octree = MethodSettings(options.method, declared, dRatio);
+    block.blendsOrContacts = !blends.empty() || !contacts.empty();
+    return block;
+}
 
-    std::vector<FieldTerm> terms(elements.size());
-    bool animated = false, anyPositive = false;
-    for (size_t i = 0; i < elements.size(); ++i) {
-        std::string error = MakeTerm(declaration, elements[i], 0, terms[i]);
-        if (!error.empty()) args.Fail(error);
-        animated |= IsAnimated(declaration, elements[i]);
-        anyPositive |= terms[i].weight > 0 || numbers.IsAnimated(elements[i].weight);
+// Builds the terms of every skeleton at `time` into `terms`; returns the first skeleton's
+// error instead (MakeTerm), or empty.
+std::string MakeTerms(const Declaration& d, double time, std::vector<FieldTerm>& terms) {
+    terms.resize(d.elements.size());
+    for (size_t i = 0; i < d.elements.size(); ++i) {
+        std::string error = MakeTerm(d, d.elements[i], time, terms[i]);
+        if (!error.empty()) return error;
     }
-    if (!anyPositive) {
-        args.Warn("implicit object without a skeleton of positive weight, discarded");
-        return nullptr;
-    }
+    return {};
+}
+
+}  // namespace
+
+std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
+    ImplicitOptions options;
+    std::vector<FieldTerm> terms;
+    std::function<std::vector<FieldTerm>(double)> termsAt;
+    bool blendsOrContacts = false;
+    {
+        ImplicitBlock block = ReadBlock(args);
+        const Declaration& declaration = block.declaration;
+        if (std::string error = MakeTerms(declaration, 0, terms); !error.empty()) {
+            args.Fail(error);
+        }
+        bool animated = false, anyPositive = false;
+        for (size_t i = 0; i < terms.size(); ++i) {
+            const ElementSpec& e = declaration.elements[i];
+            animated |= IsAnimated(declaration, e);
+            anyPositive |= terms[i].weight > 0 || declaration.numbers.IsAnimated(e.weight);
+        }
+        if (!anyPositive) {
+            args.Warn("implicit object without a skeleton of positive weight, discarded");
+            return nullptr;
+        }
+        if (animated) {
+            termsAt = [declaration = std::move(block.declaration)](double time) {
+                std::vector<FieldTerm> out;
+                if (std::string error = MakeTerms(declaration, time, out); !error.empty()) {
+                    Report(Severity::Abort, {}, "implicit object at time %g: %s", time,
+                           error.c_str());
+                }
+                return out;
+            };
+        }
+        options = std::move(block.options);
+        blendsOrContacts = block.blendsOrContacts;
+    }  // a static block's declaration is released before the build
     if (options.method == ImplicitMethod::Auto) {
-        options.method = ResolveAutoMethod(terms, !blends.empty() || !contacts.empty());
+        options.method = ResolveAutoMethod(terms, blendsOrContacts);
     }
     if (const MethodEntry& entry = MethodEntryOf(options.method); entry.check) {
         std::string error = entry.check(terms);
         if (!error.empty()) args.Fail(error);
     }
     auto surface = std::make_shared<ImplicitSurface>(std::move(terms), std::move(options));
-    if (animated) {
-        surface->termsAt_ = [declaration = std::move(declaration)](double time) {
-            const std::vector<ElementSpec>& specs = declaration.elements;
-            std::vector<FieldTerm> out(specs.size());
-            for (size_t i = 0; i < specs.size(); ++i) {
-                std::string error = MakeTerm(declaration, specs[i], time, out[i]);
-                if (!error.empty()) {
-                    Report(Severity::Abort, {}, "implicit object at time %g: %s", time,
-                           error.c_str());
-                }
-            }
-            return out;
-        };
-    }
+    surface->termsAt_ = std::move(termsAt);
     return surface;
 }
 
 void ImplicitSurface::PrepareFrame(double frameTime) {
     if (!termsAt_) return;
-    terms_ = termsAt_(frameTime);
+    whole_ = Field(termsAt_(frameTime));
     Build();
 }
 
