@@ -133,6 +133,14 @@ bool MentionsMacro(std::string_view line, const Macros& macros) {
     return false;
 }
 
+// Whether StripComments copies `c` without looking at it: not the start of a comment or
+// quote, nor anything it rejects.
+bool IsPlain(char c) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    return (u >= 0x20 || c == '\t' || c == '\n' || c == '\r') && u != 0x7f && c != '/' &&
+           c != '"' && c != '\\' && c != '\'';
+}
+
 // Replaces each comment by a blank followed by the newlines it contained, so every line
 // keeps its number. Throws NeedsCpp on what cpp would treat specially outside comments:
 // `//`, backslashes, apostrophes, control characters, and a '#' right after a comment that
@@ -173,8 +181,11 @@ std::string StripComments(std::string_view text) {
             (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') ||
             c == 0x7f)
             throw NeedsCpp{};
-        out += c;
-        ++i;
+        // Copies the run of characters up to the next one that needs a look.
+        size_t end = i + 1;
+        while (end < text.size() && IsPlain(text[end])) ++end;
+        out.append(text.substr(i, end - i));
+        i = end;
     }
     return out;
 }
@@ -366,6 +377,7 @@ std::string Preprocessor::Run(std::string_view text, const std::string& fileName
     auto active = [&] { return groups.empty() || groups.back().Active(); };
 
     std::string out;
+    out.reserve(clean.size());
     PpTokens pending;  // text lines whose macros are not expanded yet
     // Expands and emits the pending lines; at a directive or the end of the file
     // (`final`) an invocation still open goes to cpp, otherwise it waits for more lines.

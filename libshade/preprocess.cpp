@@ -4,9 +4,11 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <optional>
@@ -45,6 +47,12 @@ std::string ReadRaw(const std::string& path) {
     if (fd < 0)
         Report(Severity::Abort, kNoLocation, "Cannot open %s: %s", path.c_str(), strerror(errno));
     std::string text;
+    struct stat info;
+    if (fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) {
+        // One allocation for the whole file (the limit is checked as it is read).
+        text.reserve(static_cast<size_t>(
+            std::min<off_t>(info.st_size, static_cast<off_t>(Limits().sceneBytes)) + 1));
+    }
     while (Drain(fd, text)) {
         if (text.size() > static_cast<size_t>(Limits().sceneBytes)) {
             if (!path.empty()) close(fd);
