@@ -10,10 +10,7 @@ namespace rs {
 namespace {
 // Matches a keyword by canonical spelling (so Accept("polygon") matches `poly`) or a name.
 bool Matches(const Token& t, const char* word) {
-    if (t.kind == TokenKind::Keyword) {
-        std::string k = CanonicalKeyword(word);
-        return !k.empty() && t.keyword == k;
-    }
+    if (t.kind == TokenKind::Keyword) return SpellsKeyword(word, t.keyword);
     return t.kind == TokenKind::Name && t.text == word;
 }
 }  // namespace
@@ -23,7 +20,8 @@ ExprPtr TokenArgReader::ReadExpression() {
 }
 
 double TokenArgReader::ReadNumber() {
-    SourceLocation where = parser_.Tokens().Peek().location;
+    if (double v; ReadLiteral(parser_.Tokens(), v)) return v;  // finite (the lexer checks)
+    SourceLocation where = parser_.Tokens().Peek().Location();
     ExprPtr e = ReadExpression();
     // Spec §3.15: only transform parameters may vary with time.
     if (e->IsTimeVarying())
@@ -35,16 +33,17 @@ double TokenArgReader::ReadNumber() {
 }
 
 int TokenArgReader::ReadInt() {
-    SourceLocation where = parser_.Tokens().Peek().location;
+    SourceLocation where = parser_.Tokens().Peek().Location();
     double v = ReadNumber();
     if (!(v > INT_MIN - 1.0 && v < INT_MAX + 1.0)) FailAt(where, usage_, "Integer out of range");
     return static_cast<int>(v);  // truncation toward zero (spec `iexpr`)
 }
 
 AnimatedValue TokenArgReader::ReadAnimatedNumber() {
-    SourceLocation where = parser_.Tokens().Peek().location;
-    ExprPtr e = ReadExpression();
     AnimatedValue v;
+    if (ReadLiteral(parser_.Tokens(), v.value)) return v;  // finite (the lexer checks)
+    SourceLocation where = parser_.Tokens().Peek().Location();
+    ExprPtr e = ReadExpression();
     if (e->IsTimeVarying()) {
         v.at = [e](double time) { return e->Evaluate(time); };
         return v;
@@ -93,7 +92,7 @@ void TokenArgReader::Fail(const std::string& message) { FailAt(keyword_, usage_,
 
 void TokenArgReader::FailExpected(const std::string& what) {
     const Token& t = parser_.Tokens().Peek();
-    FailAt(t.location, usage_, "Expected " + what + ", found " + t.Describe());
+    FailAt(t.Location(), usage_, "Expected " + what + ", found " + t.Describe());
 }
 
 }  // namespace rs

@@ -18,13 +18,8 @@ class ExpressionParser {
         : tokens_(tokens), symbols_(symbols), usage_(usage) {}
 
     ExprPtr Top() {
+        if (double v; ReadLiteral(tokens_, v)) return Expr::Number(v);
         const Token& t = tokens_.Peek();
-        if (t.kind == TokenKind::Number) return Expr::Number(tokens_.Next().number);
-        if ((t.IsChar('-') || t.IsChar('+')) && tokens_.Peek(1).kind == TokenKind::Number) {
-            bool negative = tokens_.Next().IsChar('-');
-            double v = tokens_.Next().number;
-            return Expr::Number(negative ? -v : v);
-        }
         if (t.IsChar('(')) {
             tokens_.Next();
             ExprPtr e = Sum();
@@ -36,7 +31,7 @@ class ExpressionParser {
 
   private:
     [[noreturn]] void Fail(const Token& at, const std::string& message) {
-        FailAt(at.location, usage_, message);
+        FailAt(at.Location(), usage_, message);
     }
 
     void Expect(char c) {
@@ -172,6 +167,21 @@ class ExpressionParser {
 };
 
 }  // namespace
+
+bool ReadLiteral(TokenStream& tokens, double& value) {
+    const Token& t = tokens.Peek();
+    if (t.kind == TokenKind::Number) {
+        value = tokens.Next().number;
+        return true;
+    }
+    if ((t.IsChar('-') || t.IsChar('+')) && tokens.Peek(1).kind == TokenKind::Number) {
+        const bool negative = tokens.Next().IsChar('-');
+        const double v = tokens.Next().number;
+        value = negative ? -v : v;
+        return true;
+    }
+    return false;
+}
 
 bool PeekExpression(TokenStream& tokens) {
     const Token& t = tokens.Peek();

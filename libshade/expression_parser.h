@@ -17,6 +17,11 @@ inline constexpr double kMaxExprCost = 1 << 20;
 // True when the next tokens start a numeric argument: NUMBER, ±NUMBER or '('.
 bool PeekExpression(TokenStream& tokens);
 
+// Consumes a literal, NUMBER, -NUMBER or +NUMBER, storing its value in `value`; returns
+// false, consuming nothing, when the next tokens are not one. ParseExpression reads the
+// same value for it, as a Constant.
+bool ReadLiteral(TokenStream& tokens, double& value);
+
 // Parses `NUMBER | -NUMBER | +NUMBER | ( m )` where inside parentheses
 //   m := NUMBER | NAME | FUNC '(' m {',' m} ')' | '(' m ')' | -m | +m
 //      | m^m | m*m | m/m | m%m | m+m | m-m

@@ -2,11 +2,21 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <string_view>
 #include <unordered_map>
 
 namespace rs {
 
 namespace {
+
+// The keywords spelt in more than one way (spec §1.3).
+struct Synonym {
+    std::string_view word;
+    std::string_view keyword;  // its canonical spelling
+};
+constexpr Synonym kSynonyms[] = {{"polygon", "poly"},       {"reflective", "reflect"},
+                                 {"transparent", "transp"}, {"translucency", "translu"},
+                                 {"resolution", "screen"},  {"samples", "sample"}};
 
 // Spec §1.3: every keyword, mapped to its canonical spelling, plus `implicit`, our
 // Implicit Patches primitive (libray/libobj/implicit/README.md), and `patches`, its debug
@@ -36,12 +46,7 @@ const std::unordered_map<std::string, std::string>& KeywordTable() {
             "union",       "up",          "uv",           "verbose",   "window",     "windy",
             "wood"};
         for (const char* w : words) t.emplace(w, w);
-        t.emplace("polygon", "poly");
-        t.emplace("reflective", "reflect");
-        t.emplace("transparent", "transp");
-        t.emplace("translucency", "translu");
-        t.emplace("resolution", "screen");
-        t.emplace("samples", "sample");
+        for (const Synonym& s : kSynonyms) t.emplace(std::string(s.word), std::string(s.keyword));
         return t;
     }();
     return table;
@@ -68,6 +73,14 @@ std::string CanonicalKeyword(const std::string& word) {
     return it == KeywordTable().end() ? std::string() : it->second;
 }
 
+bool SpellsKeyword(std::string_view word, std::string_view keyword) {
+    if (word == keyword) return true;
+    for (const Synonym& s : kSynonyms) {
+        if (word == s.word) return keyword == s.keyword;
+    }
+    return false;
+}
+
 std::string Token::Describe() const {
     switch (kind) {
         case TokenKind::End:
@@ -86,11 +99,11 @@ std::string Token::Describe() const {
 }
 
 Lexer::Lexer(std::string text, std::string fileName)
-    : text_(std::move(text)), file_(std::move(fileName)) {}
+    : text_(std::move(text)), file_(std::make_shared<const std::string>(std::move(fileName))) {}
 
 void Lexer::Fail(const char* format, const std::string& arg) const {
     const std::string quoted = Abbreviate(arg);
-    Report(Severity::Abort, SourceLocation{file_, line_}, format, quoted.c_str());
+    Report(Severity::Abort, SourceLocation{*file_, line_}, format, quoted.c_str());
     throw FatalError(Severity::Abort, quoted);  // not reached: Report throws for Abort
 }
 
@@ -140,7 +153,7 @@ void Lexer::ReadLineMarker() {
     if (i == digitsStart || i - digitsStart > 9) Fail("Unknown '#' control: %s", line);
     int number = std::atoi(line.substr(digitsStart, i - digitsStart).c_str());
     skipBlanks();
-    std::string file = file_;
+    std::string file = *file_;
     if (i < line.size() && line[i] == '"') {
         size_t close = line.find('"', i + 1);
         if (close == std::string::npos) Fail("Unknown '#' control: %s", line);
@@ -152,7 +165,7 @@ void Lexer::ReadLineMarker() {
     }
     if (i != line.size()) Fail("Unknown '#' control: %s", line);
     pos_ = eol < text_.size() ? eol + 1 : eol;
-    file_ = file;
+    if (file != *file_) file_ = std::make_shared<const std::string>(std::move(file));
     line_ = number;
     atLineStart_ = true;
 }
@@ -213,7 +226,8 @@ size_t Lexer::MatchNumber(size_t start) const {
 Token Lexer::Next() {
     SkipSpaceAndComments();
     Token tok;
-    tok.location = SourceLocation{file_, line_};
+    tok.file = file_;
+    tok.line = line_;
     if (pos_ >= text_.size()) return tok;
     atLineStart_ = false;
 

@@ -8,7 +8,9 @@
 
 #include <cstddef>
 #include <deque>
+#include <memory>
 #include <string>
+#include <string_view>
 
 #include "libcommon/error.h"
 
@@ -32,7 +34,12 @@ struct Token {
     std::string text;     // the spelling as written
     std::string keyword;  // canonical keyword (Keyword tokens only)
     double number = 0;
-    SourceLocation location;
+    // Where the token starts: the file name, shared by the tokens of a file (null only in a
+    // default-constructed Token), and the line.
+    std::shared_ptr<const std::string> file;
+    int line = 0;
+
+    SourceLocation Location() const { return {file ? *file : std::string(), line}; }
 
     bool IsKeyword(const char* k) const { return kind == TokenKind::Keyword && keyword == k; }
     bool IsChar(char c) const {
@@ -45,6 +52,9 @@ struct Token {
 // The canonical spelling of a keyword (`polygon` → `poly`, `samples` → `sample`, ...), or an
 // empty string when `word` is not a keyword.
 std::string CanonicalKeyword(const std::string& word);
+// Whether `word` spells the keyword whose canonical spelling is `keyword` (it is that
+// spelling or one of its synonyms); cheaper than comparing CanonicalKeyword(word).
+bool SpellsKeyword(std::string_view word, std::string_view keyword);
 
 class Lexer {
   public:
@@ -62,7 +72,7 @@ class Lexer {
 
     std::string text_;
     size_t pos_ = 0;
-    std::string file_;
+    std::shared_ptr<const std::string> file_;
     int line_ = 1;
     bool atLineStart_ = true;
 };

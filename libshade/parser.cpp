@@ -78,8 +78,8 @@ struct NodeDepth {
 
 class Parser final : public ParserServices {
   public:
-    Parser(const std::string& text, const std::string& fileName, const RenderOptions& options)
-        : tokens_(text, fileName) {
+    Parser(std::string text, const std::string& fileName, const RenderOptions& options)
+        : tokens_(std::move(text), fileName) {
         scene_.options = options;
         scopes_.emplace_back();
     }
@@ -94,7 +94,7 @@ class Parser final : public ParserServices {
   private:
     // A reader for the arguments of keyword token `kw`.
     TokenArgReader Args(const Token& kw, const char* usage) {
-        return TokenArgReader(*this, kw.location, usage);
+        return TokenArgReader(*this, kw.Location(), usage);
     }
 
     void ParseTopLevelItem();
@@ -163,7 +163,7 @@ void Parser::ParseTopLevelItem() {
     } else if (t.IsKeyword("print")) {
         ParsePrint();
     } else if (!ParseScopedItem(worldChildren_)) {
-        FailAt(t.location, "", "Unexpected " + t.Describe());
+        FailAt(t.Location(), "", "Unexpected " + t.Describe());
     }
 }
 
@@ -466,13 +466,13 @@ void Parser::ParseDefine() {
     args.ReadName();
     ExprPtr value = args.ReadExpression();
     if (!symbols_.Define(name.text, value))
-        FailAt(name.location, "", "'" + name.text + "' is already defined");
+        FailAt(name.Location(), "", "'" + name.text + "' is already defined");
 }
 
 void Parser::ParsePrint() {
     Token kw = tokens_.Next();
     double v = Args(kw, "print value").ReadNumber();
-    Report(Severity::Warn, kw.location, "print: %f", v);
+    Report(Severity::Warn, kw.Location(), "print: %f", v);
 }
 
 bool Parser::PeekSurfaceStart() {
@@ -482,7 +482,7 @@ bool Parser::PeekSurfaceStart() {
 
 std::shared_ptr<const Surface> Parser::ParseSurface(const std::string& usage) {
     Token first = tokens_.Peek();
-    TokenArgReader args(*this, first.location, usage);
+    TokenArgReader args(*this, first.Location(), usage);
     Surface base;
     if (first.IsKeyword("cursurf")) {
         tokens_.Next();
@@ -494,7 +494,7 @@ std::shared_ptr<const Surface> Parser::ParseSurface(const std::string& usage) {
         tokens_.Next();
         auto it = surfaces_.find(first.text);
         if (it == surfaces_.end())
-            FailAt(first.location, "", "Undefined surface '" + first.text + "'");
+            FailAt(first.Location(), "", "Undefined surface '" + first.text + "'");
         if (!IsSurfaceAttribute(tokens_.Peek())) return it->second;
         base = *it->second;
     } else if (IsSurfaceAttribute(first)) {
@@ -563,7 +563,7 @@ std::shared_ptr<Object> Parser::ParseInstance() {
     } else if (t.IsKeyword("object")) {
         node = ParseObjectReference();
     } else {
-        FailAt(t.location, "", "Expected an object, found " + t.Describe());
+        FailAt(t.Location(), "", "Expected an object, found " + t.Describe());
     }
     TransformList transforms;
     ParseTransforms(transforms);
@@ -579,7 +579,7 @@ std::shared_ptr<Object> Parser::ParseInstance() {
 std::shared_ptr<Object> Parser::ParsePrimitive() {
     Token kw = tokens_.Next();
     const PrimitiveEntry* row = FindPrimitive(kw.keyword);
-    if (!row) FailAt(kw.location, "", "The '" + kw.keyword + "' primitive is not supported yet");
+    if (!row) FailAt(kw.Location(), "", "The '" + kw.keyword + "' primitive is not supported yet");
     std::shared_ptr<const Surface> surface;
     bool surfaceFollows = PeekSurfaceStart();
     // heightfield's own argument is a file name, which may lex as a NAME too: a NAME is the
@@ -592,7 +592,7 @@ std::shared_ptr<Object> Parser::ParsePrimitive() {
         row->startsArguments(tokens_.Peek().text))
         surfaceFollows = false;
     if (surfaceFollows) surface = ParseSurface(row->usage);
-    TokenArgReader args(*this, kw.location, row->usage);
+    TokenArgReader args(*this, kw.Location(), row->usage);
     std::shared_ptr<Primitive> prim = row->create(args);
     if (!prim) return nullptr;  // degenerate: the factory has warned
     std::shared_ptr<Object> node = Object::MakePrimitive(std::move(prim));
@@ -624,9 +624,9 @@ std::shared_ptr<Object> Parser::ParseAggregate() {
         const Token& t = tokens_.Peek();
         if (t.kind == TokenKind::End) args.Fail("Missing 'end' for this '" + k + "'");
         if (t.kind == TokenKind::Keyword && IsTopLevelOnly(t.keyword))
-            FailAt(t.location, "", "'" + t.text + "' is not allowed inside an aggregate");
+            FailAt(t.Location(), "", "'" + t.text + "' is not allowed inside an aggregate");
         if (!ParseScopedItem(children))
-            FailAt(t.location, "", "Expected an object or 'end', found " + t.Describe());
+            FailAt(t.Location(), "", "Expected an object or 'end', found " + t.Describe());
     }
     tokens_.Next();
     scopes_.pop_back();
@@ -695,7 +695,7 @@ std::shared_ptr<Object> Parser::ParseObjectReference() {
     Token nameTok = tokens_.Peek();
     std::string name = args.ReadName();
     auto it = objects_.find(name);
-    if (it == objects_.end()) FailAt(nameTok.location, "", "Undefined object '" + name + "'");
+    if (it == objects_.end()) FailAt(nameTok.Location(), "", "Undefined object '" + name + "'");
     if (!it->second) return nullptr;  // its definition was discarded (already warned)
     std::shared_ptr<Object> node = Object::MakeInstance(it->second);
     node->surface = surface ? surface : scopes_.back().current;
@@ -766,9 +766,9 @@ std::shared_ptr<Texture> Parser::ParseTexture() {
         for (const TextureEntry& e : TextureRegistry())
             if (type.keyword == e.keyword) row = &e;
     }
-    if (!row) FailAt(type.location, "", "Unknown texture type " + type.Describe());
+    if (!row) FailAt(type.Location(), "", "Unknown texture type " + type.Describe());
     Token typeTok = tokens_.Next();
-    TokenArgReader args(*this, typeTok.location, row->usage);
+    TokenArgReader args(*this, typeTok.Location(), row->usage);
     std::shared_ptr<Texture> texture = row->create(args);
     TransformList transforms;
     ParseTransforms(transforms);
@@ -778,7 +778,7 @@ std::shared_ptr<Texture> Parser::ParseTexture() {
 
 void Parser::SetDepth(const Object* node, NodeDepth d, const Token& at) {
     if (d.model > kMaxModelDepth || d.total > kMaxNodeDepth) {
-        FailAt(at.location, "",
+        FailAt(at.Location(), "",
                StringPrintf("Model nesting too deep (the limit is %d levels)", kMaxModelDepth));
     }
     // Primitives have the default depth; not storing them keeps the map small.
@@ -795,14 +795,14 @@ NodeDepth Parser::DepthOf(const Object* node) const {
 
 }  // namespace
 
-Scene ParseSceneText(const std::string& text, const std::string& fileName,
+Scene ParseSceneText(std::string text, const std::string& fileName,
                      const RenderOptions& options) {
-    return Parser(text, fileName, options).Parse();
+    return Parser(std::move(text), fileName, options).Parse();
 }
 
 Scene ParseScene(const ParseInput& input, const RenderOptions& options) {
     SourceText src = ReadSceneSource(input.path, input.useCpp, input.cppArgs, input.extraDefines);
-    return ParseSceneText(src.text, src.fileName, options);
+    return ParseSceneText(std::move(src.text), src.fileName, options);
 }
 
 }  // namespace rs

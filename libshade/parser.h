@@ -26,7 +26,7 @@ Scene ParseScene(const ParseInput& input, const RenderOptions& options);
 
 // The same for text that is already preprocessed (or is not to be); `fileName` names it in
 // messages until a line marker says otherwise.
-Scene ParseSceneText(const std::string& text, const std::string& fileName,
+Scene ParseSceneText(std::string text, const std::string& fileName,
                      const RenderOptions& options);
 
 }  // namespace rs

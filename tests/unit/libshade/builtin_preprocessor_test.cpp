@@ -26,7 +26,7 @@ std::vector<std::string> Tokens(const std::string& text, const std::string& file
         Lexer lexer(text, file);
         for (Token t = lexer.Next(); t.kind != TokenKind::End; t = lexer.Next())
             out.push_back(std::to_string(static_cast<int>(t.kind)) + " " + t.text + " @" +
-                          t.location.file + ":" + std::to_string(t.location.line));
+                          t.Location().file + ":" + std::to_string(t.Location().line));
     } catch (const FatalError& e) {
         out.push_back(std::string("error: ") + e.what());
     }

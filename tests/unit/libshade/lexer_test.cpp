@@ -98,9 +98,9 @@ TEST(Lexer, SlashBeforeADigitIsDivision) {
 TEST(Lexer, CommentsAndCarriageReturns) {
     auto t = LexAll("a /* x\n y */ b\r\nc");
     ASSERT_EQ(t.size(), 3u);
-    EXPECT_EQ(t[1].location.line, 2);
+    EXPECT_EQ(t[1].Location().line, 2);
     EXPECT_EQ(t[2].text, "c");
-    EXPECT_EQ(t[2].location.line, 3);
+    EXPECT_EQ(t[2].Location().line, 3);
 }
 
 TEST(Lexer, UnterminatedCommentIsAnError) {
@@ -112,16 +112,16 @@ TEST(Lexer, LineMarkersSetFileAndLine) {
         "# 1 \"<stdin>\"\n# 10 \"scene.ray\" 1 3\na\nb\n#line 40 \"inc.ray\"\nc\n# 7\nd\n"
         "# 3 \"\"\ne");
     ASSERT_EQ(t.size(), 5u);
-    EXPECT_EQ(t[0].location.file, "scene.ray");
-    EXPECT_EQ(t[0].location.line, 10);
-    EXPECT_EQ(t[1].location.line, 11);
-    EXPECT_EQ(t[2].location.file, "inc.ray");
-    EXPECT_EQ(t[2].location.line, 40);
-    EXPECT_EQ(t[3].location.file, "inc.ray");
-    EXPECT_EQ(t[3].location.line, 7);
-    EXPECT_EQ(t[4].location.file, "stdin");
-    EXPECT_EQ(t[4].location.line, 3);
-    EXPECT_EQ(LexAll("# 5 \"<stdin>\"\nx")[0].location.file, "stdin");
+    EXPECT_EQ(t[0].Location().file, "scene.ray");
+    EXPECT_EQ(t[0].Location().line, 10);
+    EXPECT_EQ(t[1].Location().line, 11);
+    EXPECT_EQ(t[2].Location().file, "inc.ray");
+    EXPECT_EQ(t[2].Location().line, 40);
+    EXPECT_EQ(t[3].Location().file, "inc.ray");
+    EXPECT_EQ(t[3].Location().line, 7);
+    EXPECT_EQ(t[4].Location().file, "stdin");
+    EXPECT_EQ(t[4].Location().line, 3);
+    EXPECT_EQ(LexAll("# 5 \"<stdin>\"\nx")[0].Location().file, "stdin");
 }
 
 TEST(Lexer, UnknownHashControlIsAnError) {
