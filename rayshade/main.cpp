@@ -76,7 +76,10 @@ std::string RenderFingerprint(int argc, char** argv, const std::string& inputFil
     }
     uint64_t hash = 1469598103934665603ULL;  // FNV-1a over the scene file
     if (std::FILE* in = inputFile.empty() ? nullptr : std::fopen(inputFile.c_str(), "rb")) {
-        for (int c; (c = std::fgetc(in)) != EOF;) hash = (hash ^ static_cast<uint8_t>(c)) * 1099511628211ULL;
+        unsigned char block[65536];
+        for (size_t n; (n = std::fread(block, 1, sizeof block, in)) > 0;) {
+            for (size_t i = 0; i < n; ++i) hash = (hash ^ block[i]) * 1099511628211ULL;
+        }
         std::fclose(in);
     }
     return f + std::to_string(hash);
