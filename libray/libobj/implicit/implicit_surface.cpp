@@ -7,12 +7,12 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "libcommon/error.h"
 #include "libcommon/limits.h"
+#include "libcommon/name_index.h"
 #include "libcommon/stats.h"
 
 namespace rs {
@@ -77,15 +77,16 @@ constexpr SkeletonSyntax kSkeletonSyntax[] = {
 // One skeleton as declared; its numbers, weight and kernel parameters are indices in the
 // block's DeclaredNumbers.
 struct ElementSpec {
-    std::string name;
     SkeletonKind kind = SkeletonKind::Point;
     size_t firstNumber = 0, numberCount = 0;  // in syntax order
     size_t weight = 0;
     size_t kernel = 0;  // index in Declaration::kernels
 };
 
-// An implicit block's skeletons with the numbers and kernels they refer to.
+// An implicit block's skeletons (names[i] names elements[i]) with the numbers and kernels
+// they refer to.
 struct Declaration {
+    NameIndex names;
     DeclaredNumbers numbers;
     std::vector<KernelSpec> kernels;
     std::vector<ElementSpec> elements;
@@ -114,12 +115,14 @@ Kernel MakeKernel(const KernelSpec& k, const DeclaredNumbers& numbers, double ti
     }
 }
 
-// Builds the term of `e` at `time`; returns an error message instead when the skeleton or
-// the kernel is invalid.
-std::string MakeTerm(const Declaration& d, const ElementSpec& e, double time, FieldTerm& term) {
+// Builds the term of skeleton `element` at `time`; returns an error message instead when
+// the skeleton or the kernel is invalid.
+std::string MakeTerm(const Declaration& d, size_t element, double time, FieldTerm& term) {
+    const ElementSpec& e = d.elements[element];
+    const std::string& name = d.names.Name(element);
     auto n = [&](size_t i) { return d.numbers.At(e.firstNumber + i, time); };
     auto vec = [&n](size_t i) { return Vec3{n(i), n(i + 1), n(i + 2)}; };
-    const char* who = e.name.c_str();
+    const char* who = name.c_str();
     switch (e.kind) {
         case SkeletonKind::Point:
             term.skeleton = PointSkeleton{vec(0)};
@@ -161,13 +164,13 @@ std::string MakeTerm(const Declaration& d, const ElementSpec& e, double time, Fi
             break;
         }
     }
-    term.name = e.name;
+    term.name = name;
     term.weight = d.numbers.At(e.weight, time);
     term.kernel = MakeKernel(d.kernels[e.kernel], d.numbers, time);
     if (!std::isfinite(term.weight)) {
         return StringPrintf("skeleton '%s': weight is not finite", who);
     }
-    KernelStatus status = term.kernel.Validate(e.name);
+    KernelStatus status = term.kernel.Validate(name);
     return status.ok ? std::string() : status.message;
 }
 
@@ -567,7 +570,7 @@ ImplicitBlock ReadBlock(ArgReader& args) {
     // `field quadratic 1 1 2` (m = k(R − e) = 1) until a `field` statement.
     kernels.push_back({KernelKind::GascuelQuadratic, {one, one, numbers.Add({2, {}})}, 3});
     size_t defaultKernel = 0;
-    std::unordered_map<std::string, int> index;
+    NameIndex& skeletons = block.declaration.names;
     std::vector<std::vector<std::string>> blends;
     std::vector<std::pair<std::string, std::string>> contacts;
     struct PropagationSpec {
@@ -645,20 +648,20 @@ ImplicitBlock ReadBlock(ArgReader& args) {
             }
             ElementSpec e;
             e.kind = syntax->kind;
-            e.name = args.ReadName();
-            if (!index.try_emplace(e.name, static_cast<int>(elements.size())).second) {
-                args.Fail("skeleton name '" + e.name + "' used twice");
+            if (const std::string name = args.ReadName(); !skeletons.Insert(name)) {
+                args.Fail("skeleton name '" + name + "' used twice");
             }
+            const std::string& name = skeletons.Name(elements.size());
             int count = syntax->arity;
             if (count < 0) {
                 int points = args.ReadInt();
-                if (points < 2) args.Fail("polyline '" + e.name + "' needs at least 2 points");
+                if (points < 2) args.Fail("polyline '" + name + "' needs at least 2 points");
                 // Each point is three numbers of the input, so a count beyond what any input
                 // holds only overflows 3·points (Limits().polylinePoints, raised with
                 // -L polylinePoints=N, never beyond what 3·points in an int allows).
                 const long maxPoints = std::min<long>(Limits().polylinePoints, INT_MAX / 3);
                 if (points > maxPoints)
-                    args.Fail(StringPrintf("polyline '%s' has more than %ld points", e.name.c_str(),
+                    args.Fail(StringPrintf("polyline '%s' has more than %ld points", name.c_str(),
                                            maxPoints));
                 count = 3 * points;
             }
@@ -683,12 +686,15 @@ ImplicitBlock ReadBlock(ArgReader& args) {
     if (!blends.empty()) {
         options.blendMode = BlendMode::Explicit;
         for (const std::vector<std::string>& names : blends) {
+            std::vector<int> listed;
             for (const std::string& n : names) {
-                if (!index.count(n)) args.Fail("blend names unknown skeleton '" + n + "'");
+                const long i = skeletons.Find(n);
+                if (i < 0) args.Fail("blend names unknown skeleton '" + n + "'");
+                listed.push_back(static_cast<int>(i));
             }
-            for (size_t i = 0; i < names.size(); ++i) {
-                for (size_t j = i + 1; j < names.size(); ++j) {
-                    options.blendPairs.emplace_back(index[names[i]], index[names[j]]);
+            for (size_t i = 0; i < listed.size(); ++i) {
+                for (size_t j = i + 1; j < listed.size(); ++j) {
+                    options.blendPairs.emplace_back(listed[i], listed[j]);
                 }
             }
         }
@@ -701,10 +707,11 @@ ImplicitBlock ReadBlock(ArgReader& args) {
     }
     for (const auto& [a, b] : contacts) {
         for (const std::string& n : {a, b}) {
-            if (!index.count(n)) args.Fail("contact names unknown skeleton '" + n + "'");
+            if (skeletons.Find(n) < 0) args.Fail("contact names unknown skeleton '" + n + "'");
         }
         if (a == b) args.Fail("contact needs two different skeletons, not '" + a + "' twice");
-        int ia = index[a], ib = index[b];
+        const int ia = static_cast<int>(skeletons.Find(a));
+        const int ib = static_cast<int>(skeletons.Find(b));
         for (auto [x, y] : options.blendPairs) {
             if ((x == ia && y == ib) || (x == ib && y == ia)) {
                 args.Fail("skeletons '" + a + "' and '" + b + "' both blend and are in contact");
@@ -713,8 +720,8 @@ ImplicitBlock ReadBlock(ArgReader& args) {
         options.contacts.push_back({ia, ib});
     }
     for (const PropagationSpec& p : propagations) {
-        if (!index.count(p.name)) args.Fail("propagation names unknown skeleton '" + p.name + "'");
-        int term = index[p.name];
+        const int term = static_cast<int>(skeletons.Find(p.name));
+        if (term < 0) args.Fail("propagation names unknown skeleton '" + p.name + "'");
         bool inContact = std::any_of(options.contacts.begin(), options.contacts.end(),
                                      [term](const ContactPair& c) {
                                          return c.a == term || c.b == term;
@@ -744,7 +751,7 @@ ImplicitBlock ReadBlock(ArgReader& args) {
 std::string MakeTerms(const Declaration& d, double time, std::vector<FieldTerm>& terms) {
     terms.resize(d.elements.size());
     for (size_t i = 0; i < d.elements.size(); ++i) {
-        std::string error = MakeTerm(d, d.elements[i], time, terms[i]);
+        std::string error = MakeTerm(d, i, time, terms[i]);
         if (!error.empty()) return error;
     }
     return {};
