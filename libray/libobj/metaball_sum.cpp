@@ -168,7 +168,8 @@ void MetaballSum::BuildGrid(const std::vector<Bounds3>& boxes) {
         return;  // crowded: the hierarchy instead
     }
     grid.cellBalls.resize(grid.cellStart[cellCount]);
-    std::vector<uint32_t> fill(grid.cellStart.begin(), grid.cellStart.end() - 1);
+    std::vector<uint32_t, LargeBufferAllocator<uint32_t>> fill(grid.cellStart.begin(),
+                                                               grid.cellStart.end() - 1);
     for (size_t i = 0; i < boxes.size(); ++i) {
         forCells(boxes[i], [&](int c) { grid.cellBalls[fill[c]++] = static_cast<uint32_t>(i); });
     }

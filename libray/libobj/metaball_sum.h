@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "libcommon/bounds.h"
+#include "libcommon/large_buffer.h"
 #include "libcommon/ray.h"
 #include "libobj/bvh.h"
 
@@ -90,7 +91,7 @@ class MetaballSum {
     struct Grid {
         int n[3] = {0, 0, 0};
         Vec3 lo, cellSize;
-        std::vector<uint32_t> cellStart, cellBalls;
+        std::vector<uint32_t, LargeBufferAllocator<uint32_t>> cellStart, cellBalls;
         bool IsEmpty() const { return cellStart.empty(); }
         // The cell index along `axis` holding coordinate x, clamped to the grid.
         int CellOf(double x, int axis) const;
@@ -105,7 +106,7 @@ class MetaballSum {
     void ForBallsAt(const Vec3& p, Visit&& visit) const;
 
     double threshold_;
-    std::vector<Ball> balls_;
+    std::vector<Ball, LargeBufferAllocator<Ball>> balls_;
     size_t maxSpans_ = 0;  // the most spans a ray can give: 1 per ball, 3 per capsule
     Bounds3 bounds_;
     // At most one of the two is built: none for a few balls (a plain loop).
