@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "libcommon/error.h"
+#include "libcommon/large_buffer.h"
 #include "libcommon/limits.h"
 #include "libcommon/name_index.h"
 #include "libcommon/stats.h"
@@ -48,7 +49,7 @@ class DeclaredNumbers {
         return it != animated_.end() && it->first == index ? &it->second : nullptr;
     }
 
-    std::vector<double> values_;
+    std::vector<double, LargeBufferAllocator<double>> values_;
     std::vector<std::pair<size_t, std::function<double(double)>>> animated_;  // by index
 };
 
@@ -89,7 +90,7 @@ struct Declaration {
     NameIndex names;
     DeclaredNumbers numbers;
     std::vector<KernelSpec> kernels;
-    std::vector<ElementSpec> elements;
+    std::vector<ElementSpec, LargeBufferAllocator<ElementSpec>> elements;
 };
 
 bool IsAnimated(const Declaration& d, const ElementSpec& e) {
@@ -565,7 +566,7 @@ ImplicitBlock ReadBlock(ArgReader& args) {
     double dRatio = options.octree.dRatio, tolerance = options.octree.tolerance;
     DeclaredNumbers& numbers = block.declaration.numbers;
     std::vector<KernelSpec>& kernels = block.declaration.kernels;
-    std::vector<ElementSpec>& elements = block.declaration.elements;
+    auto& elements = block.declaration.elements;
     const size_t one = numbers.Add({1, {}});
     // `field quadratic 1 1 2` (m = k(R − e) = 1) until a `field` statement.
     kernels.push_back({KernelKind::GascuelQuadratic, {one, one, numbers.Add({2, {}})}, 3});
