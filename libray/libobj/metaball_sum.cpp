@@ -93,26 +93,33 @@ double TermPeak(double strength, double radius2, const Span& span, double ta, do
 // The component of v across the unit vector n.
 Vec3 Across(const Vec3& v, const Vec3& n) { return v - n * Dot(v, n); }
 
+// The box of a ball's sphere of influence (of both end spheres for a capsule).
+Bounds3 BoxOf(const Metaball& b) {
+    const Vec3 r{b.radius, b.radius, b.radius};
+    Bounds3 box(b.centre - r, b.centre + r);
+    box.Extend(Bounds3(b.centre + b.axis - r, b.centre + b.axis + r));
+    return box;
+}
+
 }  // namespace
 
-MetaballSum::MetaballSum(double threshold, std::vector<Metaball> balls) : threshold_(threshold) {
+MetaballSum::MetaballSum(double threshold, std::span<const Metaball> balls)
+    : threshold_(threshold) {
     balls_.reserve(balls.size());
-    std::vector<Bounds3> boxes;
-    boxes.reserve(balls.size());
     for (const Metaball& b : balls) {
         const double r2 = b.radius * b.radius, length2 = LengthSquared(b.axis);
         const Vec3 unit = length2 > 0 ? b.axis / std::sqrt(length2) : Vec3{0, 0, 0};
         balls_.push_back({b.centre, r2, 1 / r2, b.strength, b.axis, length2, unit});
-        const Vec3 r{b.radius, b.radius, b.radius};
-        Bounds3 box(b.centre - r, b.centre + r);
-        box.Extend(Bounds3(b.centre + b.axis - r, b.centre + b.axis + r));
-        boxes.push_back(box);
-        bounds_.Extend(box);
+        bounds_.Extend(BoxOf(b));
         maxSpans_ += length2 > 0 ? 3 : 1;
     }
     if (balls_.size() <= kLinearSearchMax) return;
-    BuildGrid(boxes);
-    if (grid_.IsEmpty()) hierarchy_.Build(boxes);
+    BuildGrid(balls);
+    if (!grid_.IsEmpty()) return;
+    std::vector<Bounds3> boxes;
+    boxes.reserve(balls.size());
+    for (const Metaball& b : balls) boxes.push_back(BoxOf(b));
+    hierarchy_.Build(boxes);
 }
 
 int MetaballSum::Grid::CellOf(double x, int axis) const {
@@ -121,12 +128,12 @@ int MetaballSum::Grid::CellOf(double x, int axis) const {
     return static_cast<int>(std::min(f, static_cast<double>(n[axis] - 1)));
 }
 
-void MetaballSum::BuildGrid(const std::vector<Bounds3>& boxes) {
+void MetaballSum::BuildGrid(std::span<const Metaball> balls) {
     Grid grid;
     const Vec3 extent = bounds_.Extent();
     const double largest = std::max({extent.x, extent.y, extent.z});
     // Cells as near cubes: flat directions get one cell.
-    const double cells = std::min(kCellsPerBall * static_cast<double>(boxes.size()), kMaxGridCells);
+    const double cells = std::min(kCellsPerBall * static_cast<double>(balls.size()), kMaxGridCells);
     double volume = 1;
     int axes = 0;
     for (int a = 0; a < 3; ++a) {
@@ -158,7 +165,7 @@ void MetaballSum::BuildGrid(const std::vector<Bounds3>& boxes) {
             for (int y = lo[1]; y <= hi[1]; ++y)
                 for (int x = lo[0]; x <= hi[0]; ++x) visit(grid.Index(x, y, z));
     };
-    for (const Bounds3& box : boxes) forCells(box, [&](int c) { ++grid.cellStart[c + 1]; });
+    for (const Metaball& b : balls) forCells(BoxOf(b), [&](int c) { ++grid.cellStart[c + 1]; });
     size_t nonEmpty = 0;
     for (size_t c = 0; c < cellCount; ++c) {
         nonEmpty += grid.cellStart[c + 1] > 0;
@@ -170,8 +177,9 @@ void MetaballSum::BuildGrid(const std::vector<Bounds3>& boxes) {
     grid.cellBalls.resize(grid.cellStart[cellCount]);
     std::vector<uint32_t, LargeBufferAllocator<uint32_t>> fill(grid.cellStart.begin(),
                                                                grid.cellStart.end() - 1);
-    for (size_t i = 0; i < boxes.size(); ++i) {
-        forCells(boxes[i], [&](int c) { grid.cellBalls[fill[c]++] = static_cast<uint32_t>(i); });
+    for (size_t i = 0; i < balls.size(); ++i) {
+        forCells(BoxOf(balls[i]),
+                 [&](int c) { grid.cellBalls[fill[c]++] = static_cast<uint32_t>(i); });
     }
     grid_ = std::move(grid);
 }

@@ -31,6 +31,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "libcommon/bounds.h"
@@ -50,7 +51,7 @@ struct Metaball {
 
 class MetaballSum {
   public:
-    MetaballSum(double threshold, std::vector<Metaball> balls);
+    MetaballSum(double threshold, std::span<const Metaball> balls);
 
     // The smallest t in (tMin, tMax) where F − T has a root of an interval's quartic (to
     // the polynomial solver's accuracy; a tangency within its rounding counts), or nothing.
@@ -97,9 +98,9 @@ class MetaballSum {
         int CellOf(double x, int axis) const;
         int Index(int ix, int iy, int iz) const { return (iz * n[1] + iy) * n[0] + ix; }
     };
-    // Builds grid_ over the balls' boxes; leaves it empty when the balls crowd into too few
-    // cells (the caller then builds hierarchy_).
-    void BuildGrid(const std::vector<Bounds3>& boxes);
+    // Builds grid_ over the boxes of `balls` (the constructor's); leaves it empty when the
+    // balls crowd into too few cells (the caller then builds hierarchy_).
+    void BuildGrid(std::span<const Metaball> balls);
     // Calls visit(i) for every ball whose box may contain p (at least those that do), in
     // increasing index.
     template <class Visit>

@@ -1,6 +1,7 @@
 #include "libobj/implicit/polynomial_method.h"
 
 #include "libcommon/error.h"
+#include "libcommon/large_buffer.h"
 #include "libcommon/stats.h"
 
 namespace rs {
@@ -22,8 +23,9 @@ std::string CheckPolynomialTerms(const std::vector<FieldTerm>& terms) {
 
 namespace {
 
-std::vector<Metaball> Metaballs(const Field& field) {
-    std::vector<Metaball> balls;
+// The metaballs of the terms, in order (filled once, read once: a large buffer).
+std::vector<Metaball, LargeBufferAllocator<Metaball>> Metaballs(const Field& field) {
+    std::vector<Metaball, LargeBufferAllocator<Metaball>> balls;
     balls.reserve(field.Terms().size());
     for (const FieldTerm& t : field.Terms()) {
         const double strength = t.weight * t.kernel.Strength();

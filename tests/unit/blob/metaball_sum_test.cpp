@@ -257,7 +257,7 @@ TEST(MetaballSum, CapsulesThroughTheLoopMatchTheSampledField) {
 // sphere computation says; its gradient points away from the segment.
 TEST(MetaballSum, LoneCapsuleIsTheAnalyticCapsule) {
     const Metaball capsule{{1, 2, 3}, 1, 1, {2, 0, 0}};  // segment (1,2,3)-(3,2,3)
-    MetaballSum sum(kThreshold, {capsule});
+    MetaballSum sum(kThreshold, std::span(&capsule, 1));
     const double r = SurfaceRadius(capsule);
     struct Case {
         Ray ray;
