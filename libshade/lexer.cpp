@@ -1,5 +1,6 @@
 #include "libshade/lexer.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <string_view>
@@ -236,7 +237,13 @@ Token Lexer::Next() {
         tok.kind = TokenKind::Number;
         tok.text = text_.substr(pos_, n);
         pos_ += n;
-        tok.number = std::strtod(tok.text.c_str(), nullptr);
+        // from_chars and strtod both round correctly; strtod settles what from_chars leaves
+        // (out of range: infinity, zero or a subnormal, as before).
+        const char* end = tok.text.data() + tok.text.size();
+        if (auto [stop, error] = std::from_chars(tok.text.data(), end, tok.number);
+            error != std::errc() || stop != end) {
+            tok.number = std::strtod(tok.text.c_str(), nullptr);
+        }
         if (!std::isfinite(tok.number)) Fail("Number out of range: %s", tok.text);
         return tok;
     }
