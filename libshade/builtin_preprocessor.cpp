@@ -147,21 +147,27 @@ bool IsPlain(char c) {
 // spans lines (whether that is a directive depends on where the comment started). Quoted
 // text is copied as is (only an include line may have it; Tokenize rejects it elsewhere).
 // An unterminated comment is left in place for the lexer to report with its location.
-std::string StripComments(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
+// Works in place (a comment's replacement is shorter than the comment), returning `text`.
+std::string StripComments(std::string text) {
+    size_t out = 0;  // text[0, out) is the result so far; out <= i
+    // Moves text[from, to) to the result.
+    const auto keep = [&](size_t from, size_t to) {
+        if (out != from) std::copy(text.begin() + from, text.begin() + to, text.begin() + out);
+        out += to - from;
+    };
     for (size_t i = 0; i < text.size();) {
         const char c = text[i];
         const char next = i + 1 < text.size() ? text[i + 1] : '\0';
         if (c == '/' && next == '*') {
             const size_t end = text.find("*/", i + 2);
-            if (end == std::string_view::npos) {
-                out.append(text.substr(i));
+            if (end == std::string::npos) {
+                keep(i, text.size());
                 break;
             }
             const long newlines = std::count(text.begin() + i, text.begin() + end, '\n');
-            out += ' ';
-            out.append(newlines, '\n');
+            text[out++] = ' ';
+            std::fill_n(text.begin() + out, newlines, '\n');
+            out += newlines;
             i = end + 2;
             if (newlines > 0) {
                 size_t k = i;
@@ -172,8 +178,8 @@ std::string StripComments(std::string_view text) {
         }
         if (c == '"') {
             const size_t end = text.find_first_of("\"\n", i + 1);
-            if (end == std::string_view::npos || text[end] != '"') throw NeedsCpp{};
-            out.append(text.substr(i, end + 1 - i));
+            if (end == std::string::npos || text[end] != '"') throw NeedsCpp{};
+            keep(i, end + 1);
             i = end + 1;
             continue;
         }
@@ -181,14 +187,61 @@ std::string StripComments(std::string_view text) {
             (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') ||
             c == 0x7f)
             throw NeedsCpp{};
-        // Copies the run of characters up to the next one that needs a look.
+        // Keeps the run of characters up to the next one that needs a look.
         size_t end = i + 1;
         while (end < text.size() && IsPlain(text[end])) ++end;
-        out.append(text.substr(i, end - i));
+        keep(i, end);
         i = end;
     }
-    return out;
+    text.resize(out);
+    return text;
 }
+
+// The text Run emits. While it is a prefix of Run's input (every line so far passed as is),
+// it is not built: Take then returns the input itself, so a scene without directives or
+// macros is not copied.
+class RunOutput {
+  public:
+    // `input` must not change until Take.
+    explicit RunOutput(std::string& input) : input_(input) {}
+
+    // Emits input[start, end) and a newline; `end` is the position of the line's newline,
+    // or the input's size for a last line without one.
+    void CopyLine(size_t start, size_t end) {
+        if (verbatim_ && start == emitted_) {
+            emitted_ = end + 1;  // past the input's end when the newline is added
+            return;
+        }
+        Text().append(input_, start, end - start);
+        text_ += '\n';
+    }
+    // The text emitted so far, to append to.
+    std::string& Text() {
+        if (verbatim_) {
+            text_.reserve(input_.size());
+            text_.assign(input_, 0, std::min(emitted_, input_.size()));
+            if (emitted_ > input_.size()) text_ += '\n';
+            verbatim_ = false;
+        }
+        return text_;
+    }
+    // The whole text (leaves the input moved from when it is that).
+    std::string Take() {
+        if (!verbatim_) return std::move(text_);
+        if (emitted_ > input_.size()) {
+            input_ += '\n';
+        } else {
+            input_.resize(emitted_);
+        }
+        return std::move(input_);
+    }
+
+  private:
+    std::string& input_;
+    bool verbatim_ = true;
+    size_t emitted_ = 0;  // while verbatim_, the text is input_[0, emitted_) (see CopyLine)
+    std::string text_;    // the text once not verbatim_
+};
 
 std::string_view TrimBlanks(std::string_view s) {
     while (!s.empty() && IsBlank(s.front())) s.remove_prefix(1);
@@ -223,7 +276,7 @@ class Preprocessor {
     }
 
     // Preprocesses one file's text; its includes are read recursively.
-    std::string Run(std::string_view text, const std::string& fileName, int depth);
+    std::string Run(std::string text, const std::string& fileName, int depth);
 
   private:
     // Processes `#define` given the rest of its line.
@@ -363,9 +416,9 @@ PpTokens Preprocessor::Expand(const PpTokens& in, std::vector<std::string>& disa
     return out;
 }
 
-std::string Preprocessor::Run(std::string_view text, const std::string& fileName, int depth) {
+std::string Preprocessor::Run(std::string text, const std::string& fileName, int depth) {
     if (depth > kMaxDepth) throw NeedsCpp{};
-    const std::string clean = StripComments(text);
+    std::string clean = StripComments(std::move(text));
     // Conditional groups: a line is processed when every enclosing group is taken.
     struct Group {
         bool enclosingActive;
@@ -376,12 +429,13 @@ std::string Preprocessor::Run(std::string_view text, const std::string& fileName
     std::vector<Group> groups;
     auto active = [&] { return groups.empty() || groups.back().Active(); };
 
-    std::string out;
-    out.reserve(clean.size());
+    RunOutput output(clean);
     PpTokens pending;  // text lines whose macros are not expanded yet
     // Expands and emits the pending lines; at a directive or the end of the file
     // (`final`) an invocation still open goes to cpp, otherwise it waits for more lines.
     auto flush = [&](bool final) {
+        if (pending.empty()) return;
+        std::string& out = output.Text();
         std::vector<std::string> disabled;
         const size_t before = out.size();
         try {
@@ -399,25 +453,26 @@ std::string Preprocessor::Run(std::string_view text, const std::string& fileName
         const bool lastLine = end == std::string::npos;
         if (lastLine) end = clean.size();
         std::string_view line(clean.data() + start, end - start);
+        const size_t lineStart = start;
         start = end + 1;
         ++lineNumber;
 
         std::string_view rest = TrimBlanks(line);
         if (rest.empty() || rest[0] != '#') {
             if (active() && pending.empty() && !MentionsMacro(line, macros_)) {
-                out.append(line);
-                out += '\n';
+                output.CopyLine(lineStart, end);
             } else if (active()) {
                 PpTokens tokens = Tokenize(line);
                 pending.insert(pending.end(), tokens.begin(), tokens.end());
                 pending.push_back({PpKind::Newline, "\n"});
                 flush(false);
             } else {
-                out += '\n';
+                output.Text() += '\n';
             }
             continue;
         }
         flush(true);
+        std::string& out = output.Text();
         rest.remove_prefix(1);
         const std::string_view directive = TakeIdentifier(rest);
         rest = TrimBlanks(rest);
@@ -473,16 +528,16 @@ std::string Preprocessor::Run(std::string_view text, const std::string& fileName
     }
     flush(true);
     if (!groups.empty()) throw NeedsCpp{};  // cpp reports the unterminated group
-    return out;
+    return output.Take();
 }
 
 }  // namespace
 
-std::optional<std::string> PreprocessBuiltin(const std::string& text, const std::string& fileName,
+std::optional<std::string> PreprocessBuiltin(std::string text, const std::string& fileName,
                                              const std::vector<CommandLineMacro>& predefined) {
     try {
         Preprocessor preprocessor(predefined);
-        return preprocessor.Run(text, fileName, 0);
+        return preprocessor.Run(std::move(text), fileName, 0);
     } catch (const NeedsCpp&) {
         return std::nullopt;
     }

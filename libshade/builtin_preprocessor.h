@@ -46,7 +46,7 @@ struct CommandLineMacro {
 
 // Preprocesses `text`, the contents of the file `fileName` (which locates its includes),
 // with the command-line macros `predefined`; nothing when the system cpp must do it.
-std::optional<std::string> PreprocessBuiltin(const std::string& text, const std::string& fileName,
+std::optional<std::string> PreprocessBuiltin(std::string text, const std::string& fileName,
                                              const std::vector<CommandLineMacro>& predefined);
 
 }  // namespace rs
