@@ -14,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "libcommon/large_buffer.h"
 #include "libcommon/limits.h"
 #include "libcommon/error.h"
 #include "libshade/builtin_preprocessor.h"
@@ -49,9 +50,11 @@ std::string ReadRaw(const std::string& path) {
     std::string text;
     struct stat info;
     if (fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) {
-        // One allocation for the whole file (the limit is checked as it is read).
+        // One allocation for the whole file (the limit is checked as it is read), on huge
+        // pages: the text is written once here and kept through parsing.
         text.reserve(static_cast<size_t>(
             std::min<off_t>(info.st_size, static_cast<off_t>(Limits().sceneBytes)) + 1));
+        AdviseHugePages(text.data(), text.capacity());
     }
     while (Drain(fd, text)) {
         if (text.size() > static_cast<size_t>(Limits().sceneBytes)) {

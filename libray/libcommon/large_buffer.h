@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 #include <utility>
@@ -63,5 +64,22 @@ struct LargeBufferAllocator {
         return true;
     }
 };
+
+// Marks the whole 2 MiB pages inside [data, data + bytes) for transparent huge pages, as
+// LargeBufferAllocator does for its buffers: for a large buffer whose allocator cannot be
+// chosen (a std::vector or std::string of a type other code shares), right after reserving
+// it and before writing it. A hint: without it, or where it fails, pages stay small.
+inline void AdviseHugePages(const void* data, std::size_t bytes) {
+#ifdef MADV_HUGEPAGE
+    constexpr std::size_t kHugePage = LargeBufferAllocator<char>::kHugePage;
+    const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(data);
+    const std::uintptr_t begin = (start + kHugePage - 1) / kHugePage * kHugePage;
+    const std::uintptr_t end = (start + bytes) / kHugePage * kHugePage;
+    if (begin < end) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#else
+    (void)data;
+    (void)bytes;
+#endif
+}
 
 }  // namespace rs

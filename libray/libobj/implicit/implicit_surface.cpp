@@ -747,9 +747,11 @@ ImplicitBlock ReadBlock(ArgReader& args) {
     return block;
 }
 
-// Builds the terms of every skeleton at `time` into `terms`; returns the first skeleton's
-// error instead (MakeTerm), or empty.
+// Builds the terms of every skeleton at `time` into `terms` (empty); returns the first
+// skeleton's error instead (MakeTerm), or empty.
 std::string MakeTerms(const Declaration& d, double time, std::vector<FieldTerm>& terms) {
+    terms.reserve(d.elements.size());
+    AdviseHugePages(terms.data(), terms.capacity() * sizeof(FieldTerm));
     terms.resize(d.elements.size());
     for (size_t i = 0; i < d.elements.size(); ++i) {
         std::string error = MakeTerm(d, i, time, terms[i]);
