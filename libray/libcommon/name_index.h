@@ -1,8 +1,8 @@
 // Names in insertion order, each found by its index: the names in one vector and a flat
 // open-addressing hash table of indices beside it, so a name costs no allocation of its own
 // and is stored once. For the large, flat name spaces of a scene (an implicit object's
-// skeletons, by the hundred thousand). Holds fewer than 2^32 − 1 names (Insert throws
-// std::length_error beyond).
+// skeletons, by the hundred thousand); both are large buffers. Holds fewer than 2^32 − 1
+// names (Insert throws std::length_error beyond).
 #pragma once
 
 #include <algorithm>
@@ -13,6 +13,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "libcommon/large_buffer.h"
 
 namespace rs {
 
@@ -70,7 +72,7 @@ class NameIndex {
 
     // Rebuilds the table with `size` slots (a power of two, more than twice Size()).
     void Rehash(size_t size) {
-        std::vector<Slot> old(size, Slot{kEmpty, 0});
+        std::vector<Slot, LargeBufferAllocator<Slot>> old(size, Slot{kEmpty, 0});
         old.swap(slots_);
         const size_t mask = size - 1;
         for (const Slot& slot : old) {
@@ -81,9 +83,9 @@ class NameIndex {
         }
     }
 
-    std::vector<std::string> names_;
+    std::vector<std::string, LargeBufferAllocator<std::string>> names_;
     // Linear probing, at most half full.
-    std::vector<Slot> slots_;
+    std::vector<Slot, LargeBufferAllocator<Slot>> slots_;
 };
 
 }  // namespace rs
