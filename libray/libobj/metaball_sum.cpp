@@ -104,21 +104,27 @@ Bounds3 BoxOf(const Metaball& b) {
 }  // namespace
 
 MetaballSum::MetaballSum(double threshold, std::span<const Metaball> balls)
+    : MetaballSum(threshold, balls.size(), [balls](size_t i) { return balls[i]; }) {}
+
+MetaballSum::MetaballSum(double threshold, size_t count,
+                         const std::function<Metaball(size_t)>& ball)
     : threshold_(threshold) {
-    balls_.reserve(balls.size());
-    for (const Metaball& b : balls) {
+    balls_.reserve(count);
+    for (size_t i = 0; i < count; ++i) {
+        const Metaball b = ball(i);
         const double r2 = b.radius * b.radius, length2 = LengthSquared(b.axis);
         const Vec3 unit = length2 > 0 ? b.axis / std::sqrt(length2) : Vec3{0, 0, 0};
         balls_.push_back({b.centre, r2, 1 / r2, b.strength, b.axis, length2, unit});
         bounds_.Extend(BoxOf(b));
         maxSpans_ += length2 > 0 ? 3 : 1;
     }
-    if (balls_.size() <= kLinearSearchMax) return;
-    BuildGrid(balls);
+    if (count <= kLinearSearchMax) return;
+    const auto box = [&ball](size_t i) { return BoxOf(ball(i)); };
+    BuildGrid(count, box);
     if (!grid_.IsEmpty()) return;
     std::vector<Bounds3> boxes;
-    boxes.reserve(balls.size());
-    for (const Metaball& b : balls) boxes.push_back(BoxOf(b));
+    boxes.reserve(count);
+    for (size_t i = 0; i < count; ++i) boxes.push_back(box(i));
     hierarchy_.Build(boxes);
 }
 
@@ -128,12 +134,12 @@ int MetaballSum::Grid::CellOf(double x, int axis) const {
     return static_cast<int>(std::min(f, static_cast<double>(n[axis] - 1)));
 }
 
-void MetaballSum::BuildGrid(std::span<const Metaball> balls) {
+void MetaballSum::BuildGrid(size_t count, const std::function<Bounds3(size_t)>& box) {
     Grid grid;
     const Vec3 extent = bounds_.Extent();
     const double largest = std::max({extent.x, extent.y, extent.z});
     // Cells as near cubes: flat directions get one cell.
-    const double cells = std::min(kCellsPerBall * static_cast<double>(balls.size()), kMaxGridCells);
+    const double cells = std::min(kCellsPerBall * static_cast<double>(count), kMaxGridCells);
     double volume = 1;
     int axes = 0;
     for (int a = 0; a < 3; ++a) {
@@ -155,17 +161,17 @@ void MetaballSum::BuildGrid(std::span<const Metaball> balls) {
     // Count, then fill (compressed rows, balls in increasing index per cell).
     const size_t cellCount = static_cast<size_t>(grid.n[0]) * grid.n[1] * grid.n[2];
     grid.cellStart.assign(cellCount + 1, 0);
-    const auto forCells = [&](const Bounds3& box, auto&& visit) {
+    const auto forCells = [&](const Bounds3& b, auto&& visit) {
         int lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
-            lo[a] = grid.CellOf(box.lo[a] - pad, a);
-            hi[a] = grid.CellOf(box.hi[a] + pad, a);
+            lo[a] = grid.CellOf(b.lo[a] - pad, a);
+            hi[a] = grid.CellOf(b.hi[a] + pad, a);
         }
         for (int z = lo[2]; z <= hi[2]; ++z)
             for (int y = lo[1]; y <= hi[1]; ++y)
                 for (int x = lo[0]; x <= hi[0]; ++x) visit(grid.Index(x, y, z));
     };
-    for (const Metaball& b : balls) forCells(BoxOf(b), [&](int c) { ++grid.cellStart[c + 1]; });
+    for (size_t i = 0; i < count; ++i) forCells(box(i), [&](int c) { ++grid.cellStart[c + 1]; });
     size_t nonEmpty = 0;
     for (size_t c = 0; c < cellCount; ++c) {
         nonEmpty += grid.cellStart[c + 1] > 0;
@@ -177,8 +183,8 @@ void MetaballSum::BuildGrid(std::span<const Metaball> balls) {
     grid.cellBalls.resize(grid.cellStart[cellCount]);
     std::vector<uint32_t, LargeBufferAllocator<uint32_t>> fill(grid.cellStart.begin(),
                                                                grid.cellStart.end() - 1);
-    for (size_t i = 0; i < balls.size(); ++i) {
-        forCells(BoxOf(balls[i]),
+    for (size_t i = 0; i < count; ++i) {
+        forCells(box(i),
                  [&](int c) { grid.cellBalls[fill[c]++] = static_cast<uint32_t>(i); });
     }
     grid_ = std::move(grid);

@@ -30,6 +30,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -52,6 +53,9 @@ struct Metaball {
 class MetaballSum {
   public:
     MetaballSum(double threshold, std::span<const Metaball> balls);
+    // The balls ball(0) ... ball(count − 1), without a copy of them all: `ball` is called a
+    // few times per ball and must give the same ball each time.
+    MetaballSum(double threshold, size_t count, const std::function<Metaball(size_t)>& ball);
 
     // The smallest t in (tMin, tMax) where F − T has a root of an interval's quartic (to
     // the polynomial solver's accuracy; a tangency within its rounding counts), or nothing.
@@ -98,9 +102,9 @@ class MetaballSum {
         int CellOf(double x, int axis) const;
         int Index(int ix, int iy, int iz) const { return (iz * n[1] + iy) * n[0] + ix; }
     };
-    // Builds grid_ over the boxes of `balls` (the constructor's); leaves it empty when the
-    // balls crowd into too few cells (the caller then builds hierarchy_).
-    void BuildGrid(std::span<const Metaball> balls);
+    // Builds grid_ over the boxes box(0) ... box(count − 1) of the balls; leaves it empty
+    // when the balls crowd into too few cells (the caller then builds hierarchy_).
+    void BuildGrid(size_t count, const std::function<Bounds3(size_t)>& box);
     // Calls visit(i) for every ball whose box may contain p (at least those that do), in
     // increasing index.
     template <class Visit>

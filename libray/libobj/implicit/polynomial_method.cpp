@@ -1,7 +1,6 @@
 #include "libobj/implicit/polynomial_method.h"
 
 #include "libcommon/error.h"
-#include "libcommon/large_buffer.h"
 #include "libcommon/stats.h"
 
 namespace rs {
@@ -23,26 +22,20 @@ std::string CheckPolynomialTerms(const std::vector<FieldTerm>& terms) {
 
 namespace {
 
-// The metaballs of the terms, in order (filled once, read once: a large buffer).
-std::vector<Metaball, LargeBufferAllocator<Metaball>> Metaballs(const Field& field) {
-    std::vector<Metaball, LargeBufferAllocator<Metaball>> balls;
-    balls.reserve(field.Terms().size());
-    for (const FieldTerm& t : field.Terms()) {
-        const double strength = t.weight * t.kernel.Strength();
-        if (const auto* segment = std::get_if<SegmentSkeleton>(&t.skeleton)) {
-            balls.push_back({segment->a, t.kernel.Radius(), strength, segment->b - segment->a});
-        } else {
-            balls.push_back({std::get<PointSkeleton>(t.skeleton).center, t.kernel.Radius(),
-                             strength});
-        }
+// The metaball of a term (CheckPolynomialTerms accepts it).
+Metaball MetaballOf(const FieldTerm& t) {
+    const double strength = t.weight * t.kernel.Strength();
+    if (const auto* segment = std::get_if<SegmentSkeleton>(&t.skeleton)) {
+        return {segment->a, t.kernel.Radius(), strength, segment->b - segment->a};
     }
-    return balls;
+    return {std::get<PointSkeleton>(t.skeleton).center, t.kernel.Radius(), strength};
 }
 
 }  // namespace
 
 PolynomialMethod::PolynomialMethod(const Field& field, const MethodParams& params)
-    : sum_(params.threshold, Metaballs(field)) {}
+    : sum_(params.threshold, field.Terms().size(),
+           [&terms = field.Terms()](size_t i) { return MetaballOf(terms[i]); }) {}
 
 std::optional<double> PolynomialMethod::FirstRoot(const Ray& ray, double tMin,
                                                   double tMax) const {
