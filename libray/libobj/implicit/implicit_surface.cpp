@@ -752,9 +752,8 @@ ImplicitBlock ReadBlock(ArgReader& args) {
 std::string MakeTerms(const Declaration& d, double time, std::vector<FieldTerm>& terms) {
     terms.reserve(d.elements.size());
     AdviseHugePages(terms.data(), terms.capacity() * sizeof(FieldTerm));
-    terms.resize(d.elements.size());
     for (size_t i = 0; i < d.elements.size(); ++i) {
-        std::string error = MakeTerm(d, i, time, terms[i]);
+        std::string error = MakeTerm(d, i, time, terms.emplace_back());
         if (!error.empty()) return error;
     }
     return {};
