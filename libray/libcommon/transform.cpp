@@ -130,25 +130,42 @@ Bounds3 Transform::ApplyBounds(const Bounds3& b) const {
     return r;
 }
 
+TransformList::TransformList(const TransformList& other)
+    : steps_(other.steps_ ? std::make_unique<Steps>(*other.steps_) : nullptr) {}
+
+TransformList& TransformList::operator=(const TransformList& other) {
+    if (this != &other) steps_ = other.steps_ ? std::make_unique<Steps>(*other.steps_) : nullptr;
+    return *this;
+}
+
+TransformList::Steps& TransformList::MutableSteps() {
+    if (!steps_) steps_ = std::make_unique<Steps>();
+    steps_->prepared = false;
+    return *steps_;
+}
+
 void TransformList::Append(const Transform& step) {
     if (step.IsIdentity()) return;
-    prepared_ = false;
-    if (!steps_.empty() && !steps_.back().animated) {
-        steps_.back().fixed = steps_.back().fixed.Then(step);
+    Steps& s = MutableSteps();
+    if (!s.steps.empty() && !s.steps.back().animated) {
+        s.steps.back().fixed = s.steps.back().fixed.Then(step);
     } else {
-        steps_.push_back({step, {}});
+        s.steps.push_back({step, {}});
     }
-    if (!animated_) composedStatic_ = composedStatic_.Then(step);
+    if (!s.animated) s.composedStatic = s.composedStatic.Then(step);
 }
 
 void TransformList::AppendAnimated(AnimatedStep step) {
-    prepared_ = false;
-    steps_.push_back({Transform{}, std::move(step)});
-    animated_ = true;
+    Steps& s = MutableSteps();
+    s.steps.push_back({Transform{}, std::move(step)});
+    s.animated = true;
 }
 
 void TransformList::Append(const TransformList& other) {
-    for (const Step& s : other.steps_) {
+    if (!other.steps_) return;
+    // Copied first: `other` may be this list.
+    const std::vector<Step> steps = other.steps_->steps;
+    for (const Step& s : steps) {
         if (s.animated)
             AppendAnimated(s.animated);
         else
@@ -157,10 +174,10 @@ void TransformList::Append(const TransformList& other) {
 }
 
 Transform TransformList::At(double time) const {
-    if (!animated_) return composedStatic_;
-    if (prepared_ && time == preparedTime_) return preparedTransform_;
+    if (!IsAnimated()) return Static();
+    if (steps_->prepared && time == steps_->preparedTime) return steps_->preparedTransform;
     Transform r;
-    for (const Step& s : steps_) {
+    for (const Step& s : steps_->steps) {
         if (s.animated) {
             if (std::optional<Transform> t = s.animated(time)) r = r.Then(*t);
         } else {
@@ -171,11 +188,11 @@ Transform TransformList::At(double time) const {
 }
 
 void TransformList::PrepareAt(double time) {
-    if (!animated_) return;
-    prepared_ = false;  // At below must evaluate
-    preparedTransform_ = At(time);
-    preparedTime_ = time;
-    prepared_ = true;
+    if (!IsAnimated()) return;
+    steps_->prepared = false;  // At below must evaluate
+    steps_->preparedTransform = At(time);
+    steps_->preparedTime = time;
+    steps_->prepared = true;
 }
 
 }  // namespace rs

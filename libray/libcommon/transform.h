@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -95,17 +96,23 @@ class TransformList {
     // parameters are invalid at that time (singular scale, zero rotation axis).
     using AnimatedStep = std::function<std::optional<Transform>(double time)>;
 
+    TransformList() = default;
+    TransformList(const TransformList& other);
+    TransformList& operator=(const TransformList& other);
+    TransformList(TransformList&&) noexcept = default;
+    TransformList& operator=(TransformList&&) noexcept = default;
+
     void Append(const Transform& step);
     void AppendAnimated(AnimatedStep step);
     void Append(const TransformList& other);
 
-    bool IsIdentity() const { return steps_.empty(); }
-    bool IsAnimated() const { return animated_; }
+    bool IsIdentity() const { return !steps_; }
+    bool IsAnimated() const { return steps_ && steps_->animated; }
     // The composed transform at `time` (time is ignored for a static list). A step that is
     // invalid at that time is skipped (and counted by the caller as a warning elsewhere).
     Transform At(double time) const;
     // The composed transform of a static list (requires !IsAnimated()).
-    const Transform& Static() const { return composedStatic_; }
+    const Transform& Static() const { return steps_ ? steps_->composedStatic : kIdentity; }
     // Evaluates an animated list at `time` once and keeps the result, so that At(time) for
     // that same time is a copy instead of an evaluation of every animated step (the
     // renderer prepares each frame's start: without motion blur every ray has that time).
@@ -117,12 +124,21 @@ class TransformList {
         Transform fixed;
         AnimatedStep animated;  // empty for a fixed step
     };
-    std::vector<Step> steps_;
-    Transform composedStatic_;
-    bool animated_ = false;
-    bool prepared_ = false;
-    double preparedTime_ = 0;
-    Transform preparedTransform_;  // At(preparedTime_), when prepared_
+    // The steps of a non-empty list and what is composed from them. Held on the heap, and
+    // only once a step is appended: most nodes of a scene (every triangle of a mesh) have
+    // no transform, and their list then costs one pointer instead of three transforms.
+    struct Steps {
+        std::vector<Step> steps;
+        Transform composedStatic;
+        bool animated = false;
+        bool prepared = false;
+        double preparedTime = 0;
+        Transform preparedTransform;  // At(preparedTime), when prepared
+    };
+    Steps& MutableSteps();
+
+    inline static const Transform kIdentity{};
+    std::unique_ptr<Steps> steps_;  // null for the identity
 };
 
 }  // namespace rs

@@ -89,6 +89,40 @@ TEST(TransformList, PreparedTimeIsEvaluatedOnceAndOtherTimesAsBefore) {
     EXPECT_EQ(evaluations, 3);
 }
 
+TEST(TransformList, EmptyListIsTheIdentityUntilANonIdentityStep) {
+    TransformList l;
+    EXPECT_TRUE(l.IsIdentity());
+    EXPECT_FALSE(l.IsAnimated());
+    l.Append(Transform{});  // identity steps are dropped
+    EXPECT_TRUE(l.IsIdentity());
+    ExpectNear(l.Static().ApplyPoint({1, 2, 3}), {1, 2, 3});
+    ExpectNear(l.At(5).ApplyPoint({1, 2, 3}), {1, 2, 3});
+    l.Append(Transform::Translate({1, 0, 0}));
+    EXPECT_FALSE(l.IsIdentity());
+}
+
+TEST(TransformList, CopiesAreIndependent) {
+    TransformList a;
+    a.Append(Transform::Translate({1, 0, 0}));
+    TransformList b = a;
+    b.Append(*Transform::Scale({2, 2, 2}));
+    ExpectNear(a.Static().ApplyPoint({0, 0, 0}), {1, 0, 0});
+    ExpectNear(b.Static().ApplyPoint({0, 0, 0}), {2, 0, 0});
+    TransformList c;
+    c = b;
+    b = TransformList{};
+    EXPECT_TRUE(b.IsIdentity());
+    ExpectNear(c.Static().ApplyPoint({0, 0, 0}), {2, 0, 0});
+}
+
+TEST(TransformList, AppendingAListToItselfAppliesItTwice) {
+    TransformList l;
+    l.Append(Transform::Translate({1, 0, 0}));
+    l.AppendAnimated([](double time) { return std::optional<Transform>(Transform::Translate({0, time, 0})); });
+    l.Append(l);
+    ExpectNear(l.At(3).ApplyPoint({0, 0, 0}), {2, 6, 0});
+}
+
 TEST(Bounds, ClipRayHandlesAxisParallelDirections) {
     Bounds3 b({-1, -1, -1}, {1, 1, 1});
     Ray r{{0, 0, -5}, {0, 0, 2}, 0};
