@@ -297,7 +297,7 @@ double LoneThickness(const FieldTerm& term, double threshold) {
 // the maximum depth is at least minDepth + 3. A lone point with the blob kernel of the
 // benchmark (R = 1, T = 0.6: τ = 0.47, edge 2) gets 3, Gascuel's setting.
 int ImplicitSurface::AutoMinDepth(const Patch& patch, double threshold) {
-    const double tau = LoneThickness(patch.GetField().Terms().front(), threshold);
+    const double tau = LoneThickness(patch.GetField().Terms()[patch.Own()], threshold);
     const Vec3 extent = patch.Box().Extent();
     const double edge = std::max({extent.x, extent.y, extent.z});
     if (!(tau > 0) || !(edge > tau)) return 2;
@@ -421,7 +421,7 @@ void ImplicitSurface::BuildStructures() {
     }
     std::vector<std::pair<int, int>> separate;
     for (const ContactPair& c : options_.contacts) separate.emplace_back(c.a, c.b);
-    patches_ = BuildPatches(terms_, options_.blendMode, options_.blendPairs, separate);
+    patches_ = BuildPatches(whole_, options_.blendMode, options_.blendPairs, separate);
     trees_ = std::make_unique<LazyTree[]>(patches_.size());
     for (const Patch& p : patches_) bounds_.Extend(p.Box());
     if (!options_.contacts.empty()) {
@@ -800,7 +800,7 @@ SurfaceNormals ImplicitSurface::Normal(const Vec3& p, const PrimitiveHit& hit) c
                                                 : field.Gradient(p)));
     if (LengthSquared(n) == 0) {
         // Zero gradient: point away from the dominant (or own) skeleton.
-        int own = 0;
+        int own = usePatch ? patches_[hit.part].Own() : 0;
         if (!usePatch) {
             for (int i = 1; i < field.Size(); ++i) {
                 if (field.TermValue(i, p) > field.TermValue(own, p)) own = i;

@@ -387,12 +387,16 @@ std::size_t LGOctree::MemoryBytes() const {
 }
 
 // False when some other term's smallest value over the box exceeds the own term's largest
-// (strictly, so even a tie won by the lower index is impossible).
-// `ranges` holds every term's value range over the box (Field::Bound).
-bool LGOctree::OwnMayPredominate(const std::vector<TermValueRange>& ranges) const {
-    const double ownHi = ranges[ownTerm_].hi;
-    for (int j = 0; j < field_.Size(); ++j) {
-        if (j != ownTerm_ && ranges[j].lo > ownHi) return false;
+// (strictly, so even a tie won by the lower index is impossible). Rows missing from `terms`
+// are 0 over the box; so is the own term when missing (then any positive term excludes).
+bool LGOctree::OwnMayPredominate(std::span<const int32_t> terms,
+                                 const std::vector<TermValueRange>& ranges) const {
+    double ownHi = 0;
+    for (size_t k = 0; k < terms.size(); ++k) {
+        if (terms[k] == ownTerm_) ownHi = ranges[k].hi;
+    }
+    for (size_t k = 0; k < terms.size(); ++k) {
+        if (terms[k] != ownTerm_ && ranges[k].lo > ownHi) return false;
     }
     return true;
 }
@@ -402,7 +406,7 @@ bool LGOctree::OwnExcluded(const Bounds3& box) const {
     double ownLo, ownHi;
     field_.TermRange(ownTerm_, box, ownLo, ownHi);
     const double limit = ownHi + kExclusionMargin * std::abs(ownHi);
-    for (int j = 0; j < field_.Size(); ++j) {
+    for (const int j : field_.Rows()) {
         if (j == ownTerm_) continue;
         double lo, hi;
         field_.TermRange(j, box, lo, hi);
@@ -413,7 +417,7 @@ bool LGOctree::OwnExcluded(const Bounds3& box) const {
 
 LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G) {
     std::size_t first = terms_.size();
-    field_.ActiveTerms(box.Padded(leafPadding_), terms_);
+    field_.ActiveTerms(box.Padded(leafPadding_), field_.Rows(), terms_);
     const std::size_t count = terms_.size() - first;
     // Share an equal list made before: look it up by a hash of the list in a small
     // direct-mapped cache of recent lists. An entry may be stale (its range truncated by a
@@ -455,7 +459,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     Count(c.cellsBuilt);
     const OctreeSettings& s = settings_;
     const bool predominance = s.usePredominancePruning && ownTerm_ >= 0;
-    FieldBound fb = predominance ? field_.Bound(box, termRanges_) : field_.Bound(box);
+    FieldBound fb = field_.Bound(box, field_.Rows(), predominance ? &termRanges_ : nullptr);
     if (s.useValueRange) {
         if (fb.valueMin > threshold_) {
             Count(c.rangeFired);
@@ -466,7 +470,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
             return kEmptyRef;
         }
     }
-    if (predominance && !OwnMayPredominate(termRanges_)) {
+    if (predominance && !OwnMayPredominate(field_.Rows(), termRanges_)) {
         Count(c.patchFired);
         return kEmptyRef;
     }
@@ -638,7 +642,7 @@ std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tM
 }
 
 LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings) {
-    return LGOctree(patch.GetField(), threshold, patch.Box(), settings, 0);
+    return LGOctree(patch.GetField(), threshold, patch.Box(), settings, patch.Own());
 }
 
 std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,

@@ -149,10 +149,10 @@ enum class CellClass { Empty, Full, Leaf };
 
 class LGOctree {
   public:
-    // Builds the tree of g = F − T over `box` (the field is copied). With ownTerm >= 0 the
-    // tree serves a patch whose own term is field term `ownTerm`: cells where that term
-    // cannot predominate are marked Empty (the "patch" rule), so FirstRoot then only
-    // finds roots an `accept` predominance test could keep.
+    // Builds the tree of g = F − T over `box` (the copy shares the field's term table).
+    // With ownTerm >= 0 the tree serves a patch whose own term is the field's term (row)
+    // `ownTerm`: cells where that term cannot predominate are marked Empty (the "patch"
+    // rule), so FirstRoot then only finds roots an `accept` predominance test could keep.
     LGOctree(Field field, double threshold, const Bounds3& box, const OctreeSettings& settings,
              int ownTerm = -1);
 
@@ -218,7 +218,10 @@ class LGOctree {
     // a given lattice point's coordinates by the same midpoint operations, so the cached
     // value is exactly what a fresh evaluation would return.
     double LatticeValue(const Vec3& p, LatticePoint q);
-    bool OwnMayPredominate(const std::vector<TermValueRange>& ranges) const;
+    // `ranges[k]` is the value range of row terms[k] over the cell (Field::Bound); `terms`
+    // holds every row of the field meeting the cell.
+    bool OwnMayPredominate(std::span<const int32_t> terms,
+                           const std::vector<TermValueRange>& ranges) const;
     // A leaf for cell `box`, with the active terms of the cell padded by leafPadding_
     // (shared with an equal list made before when the list cache finds one).
     Ref MakeLeaf(const Bounds3& box, double L, double G);

@@ -9,38 +9,31 @@ namespace rs {
 
 namespace {
 
-std::vector<FieldTerm> SelectTerms(const std::vector<FieldTerm>& all,
-                                   const std::vector<int>& members) {
-    std::vector<FieldTerm> out;
-    out.reserve(members.size());
-    for (int i : members) out.push_back(all[i]);
-    return out;
-}
-
 bool BoxesOverlap(const Bounds3& a, const Bounds3& b) {
     return !Intersection(a, b).IsEmpty();
 }
 
 }  // namespace
 
-Patch::Patch(const std::vector<FieldTerm>& allTerms, std::vector<int> members)
-    : members_(std::move(members)),
-      field_(SelectTerms(allTerms, members_)),
-      box_(TermSupportBounds(allTerms[members_.front()])) {}
+Patch::Patch(const Field& object, std::vector<int> members)
+    : field_(object.Subset(std::move(members))),
+      box_(TermSupportBounds(object.Terms()[field_.Rows().front()])) {}
 
 bool Patch::Predominates(const Vec3& p) const {
-    double own = field_.TermValue(0, p);
-    int ownIndex = members_.front();
-    for (int j = 1; j < field_.Size(); ++j) {
-        double other = field_.TermValue(j, p);
-        if (other > own || (other == own && members_[j] < ownIndex)) return false;
+    const std::vector<int>& members = field_.Rows();
+    const int ownIndex = members.front();
+    const double own = field_.TermValue(ownIndex, p);
+    for (size_t j = 1; j < members.size(); ++j) {
+        double other = field_.TermValue(members[j], p);
+        if (other > own || (other == own && members[j] < ownIndex)) return false;
     }
     return true;
 }
 
-std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode mode,
+std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
                                 const std::vector<std::pair<int, int>>& blendPairs,
                                 const std::vector<std::pair<int, int>>& separatePairs) {
+    const std::vector<FieldTerm>& terms = object.Terms();
     const int n = static_cast<int>(terms.size());
     std::vector<Bounds3> support(n);
     for (int i = 0; i < n; ++i) support[i] = TermSupportBounds(terms[i]);
@@ -119,7 +112,7 @@ std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode m
             if (j == i || !BoxesOverlap(support[i], support[j]) || separate(i, j)) continue;
             members.push_back(j);
         }
-        patches.emplace_back(terms, std::move(members));
+        patches.emplace_back(object, std::move(members));
     }
     return patches;
 }

@@ -33,16 +33,19 @@ namespace rs {
 
 class Patch {
   public:
-    // `members` are global term indices, the own term first.
-    Patch(const std::vector<FieldTerm>& allTerms, std::vector<int> members);
+    // `members` are term indices (rows of `object`'s table), the own term first. The patch
+    // field shares the object's term table (Field::Subset): a patch stores its member list,
+    // not copies of its terms.
+    Patch(const Field& object, std::vector<int> members);
 
-    int Own() const { return members_.front(); }
-    const std::vector<int>& Members() const { return members_; }
-    // The patch field: terms in the order of Members() (own term at index 0).
+    int Own() const { return field_.Rows().front(); }
+    const std::vector<int>& Members() const { return field_.Rows(); }
+    // The patch field: the terms of Members(), summed in that order (own term first); its
+    // term indices are the object's.
     const Field& GetField() const { return field_; }
     const Bounds3& Box() const { return box_; }
 
-    // Whether the own term predominates at p (ties to the lowest global index).
+    // Whether the own term predominates at p (ties to the lowest term index).
     bool Predominates(const Vec3& p) const;
     // Adds a deformation term to the patch field (contact.h); predominance, members and box
     // are unchanged.
@@ -51,17 +54,17 @@ class Patch {
     }
 
   private:
-    std::vector<int> members_;
     Field field_;
     Bounds3 box_;
 };
 
 enum class BlendMode { Automatic, Explicit };
 
-// Builds one patch per positive-weight term. In Explicit mode `blendPairs` lists the term
+// Builds one patch per positive-weight term of `object` (a field made from the object's
+// terms, whose table the patches share). In Explicit mode `blendPairs` lists the term
 // index pairs that blend (symmetric; others are ignored); in Automatic mode it is unused.
 // `separatePairs` (symmetric) never blend, in either mode: the pairs in contact (contact.h).
-std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode mode,
+std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
                                 const std::vector<std::pair<int, int>>& blendPairs = {},
                                 const std::vector<std::pair<int, int>>& separatePairs = {});
 

@@ -222,7 +222,7 @@ TEST(LGOctree, LeafBoxHoldsEveryLeafCell) {
     Rng rng(7);
     const std::vector<FieldTerm> terms = RandomPointTerms(rng, [](int) { return Kernel::Blob(1, 0.9); });
     int leafPoints = 0, missingRays = 0;
-    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+    for (const Patch& patch : BuildPatches(Field(terms), BlendMode::Automatic)) {
         LGOctree tree = BuildPatchOctree(patch, 0.6, OctreeSettings{});
         const Bounds3& leafBox = tree.LeafBox();
         for (int i = 0; i < 20000; ++i) {
@@ -255,7 +255,7 @@ TEST(LGOctree, ExcludedBoxesHoldNoPredominantPoint) {
         return i % 2 ? Kernel::Blob(1, 0.9) : Kernel::GascuelQuadratic(0.35, 2.4, 0.9);
     });
     int excluded = 0;
-    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+    for (const Patch& patch : BuildPatches(Field(terms), BlendMode::Automatic)) {
         LGOctree tree = BuildPatchOctree(patch, 0.6, OctreeSettings{});
         for (int i = 0; i < 400; ++i) {
             Vec3 a = testing::RandomInBox(rng, tree.Box());
@@ -276,7 +276,7 @@ TEST(LGOctree, PatchRuleCellsHoldNoAcceptableRoot) {
     const std::vector<FieldTerm> terms =
         RandomPointTerms(rng, [](int) { return Kernel::GascuelQuadratic(0.35, 2.4, 0.9); });
     int pruned = 0;
-    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+    for (const Patch& patch : BuildPatches(Field(terms), BlendMode::Automatic)) {
         LGOctree tree = BuildPatchOctree(patch, 1.0, OctreeSettings{});
         for (int i = 0; i < 3000; ++i) {
             Vec3 p = testing::RandomInBox(rng, tree.Box());
@@ -338,7 +338,7 @@ TEST(LGOctree, AutomaticPatchesMatchPlainSum) {
             terms.push_back({StringPrintf("t%d", i), s, k, 1});
         }
         Scene plain(terms, 1.0);
-        std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+        std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
         std::vector<LGOctree> trees;
         for (const Patch& p : patches)
             trees.push_back(BuildPatchOctree(p, 1.0, OctreeSettings{}));
@@ -482,7 +482,7 @@ TEST(LGOctree, ExplicitBlendListsGiveUnionOfSpheres) {
         }
         return best;
     };
-    std::vector<Patch> separate = BuildPatches(terms, BlendMode::Explicit, {{1, 2}});
+    std::vector<Patch> separate = BuildPatches(Field(terms), BlendMode::Explicit, {{1, 2}});
     std::vector<LGOctree> trees;
     for (const Patch& p : separate)
         trees.push_back(BuildPatchOctree(p, 1.0, OctreeSettings{}));
@@ -512,7 +512,7 @@ TEST(LGOctree, ExplicitBlendListsGiveUnionOfSpheres) {
     auto t = firstHit(separate, trees, crease);
     ASSERT_TRUE(t.has_value());
     EXPECT_NEAR(*t, 5 - 0.4, 1e-7);
-    std::vector<Patch> blended = BuildPatches(terms, BlendMode::Automatic);
+    std::vector<Patch> blended = BuildPatches(Field(terms), BlendMode::Automatic);
     std::vector<LGOctree> blendedTrees;
     for (const Patch& p : blended)
         blendedTrees.push_back(BuildPatchOctree(p, 1.0, OctreeSettings{}));
