@@ -360,13 +360,19 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     leafScratch.clear();
     LeafLists().Clear();
     termScratch.clear();
+    thread_local std::vector<std::vector<int32_t>> cellTermScratch;
+    if (cellTermScratch.size() < static_cast<size_t>(settings_.maxDepth) + 1) {
+        cellTermScratch.resize(static_cast<size_t>(settings_.maxDepth) + 1);
+    }
     internals_.swap(internalScratch);
     leaves_.swap(leafScratch);
     terms_.swap(termScratch);
-    root_ = Build(box_, 0, {0, 0, 0});
+    cellTerms_.swap(cellTermScratch);
+    root_ = Build(box_, 0, {0, 0, 0}, field_.Rows());
     internals_.swap(internalScratch);
     leaves_.swap(leafScratch);
     terms_.swap(termScratch);
+    cellTerms_.swap(cellTermScratch);
     internals_.assign(internalScratch.begin(), internalScratch.end());
     leaves_.assign(leafScratch.begin(), leafScratch.end());
     terms_.assign(termScratch.begin(), termScratch.end());
@@ -415,9 +421,10 @@ bool LGOctree::OwnExcluded(const Bounds3& box) const {
     return false;
 }
 
-LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G) {
+LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G,
+                                 std::span<const int32_t> terms) {
     std::size_t first = terms_.size();
-    field_.ActiveTerms(box.Padded(leafPadding_), field_.Rows(), terms_);
+    field_.ActiveTerms(box.Padded(leafPadding_), terms, terms_);
     const std::size_t count = terms_.size() - first;
     // Share an equal list made before: look it up by a hash of the list in a small
     // direct-mapped cache of recent lists. An entry may be stale (its range truncated by a
@@ -447,19 +454,25 @@ void LGOctree::ExtendLeafBox(Ref ref, const Bounds3& box) {
     }
 }
 
-double LGOctree::LatticeValue(const Vec3& p, LatticePoint q) {
+double LGOctree::LatticeValue(const Vec3& p, LatticePoint q, std::span<const int32_t> terms) {
     const uint64_t key = (uint64_t{q.x} << 42) | (uint64_t{q.y} << 21) | uint64_t{q.z};
     double* slot = LatticeTable().Find(key);
-    if (!slot) slot = LatticeTable().Insert(key, field_.Value(p));
+    if (!slot) slot = LatticeTable().Insert(key, field_.Value(p, terms));
     return *slot;
 }
 
-LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
+LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
+                              std::span<const int32_t> parentTerms) {
     const OctreeCounters& c = Counters();
     Count(c.cellsBuilt);
     const OctreeSettings& s = settings_;
+    // This cell's rows, in a per-depth slot of cellTerms_ (children fill deeper slots, so
+    // the list stays valid until this call returns; the slots exist before the build).
+    std::vector<int32_t>& terms = cellTerms_[depth];
+    terms.clear();
+    field_.TermsMeeting(box.Padded(leafPadding_), parentTerms, terms);
     const bool predominance = s.usePredominancePruning && ownTerm_ >= 0;
-    FieldBound fb = field_.Bound(box, field_.Rows(), predominance ? &termRanges_ : nullptr);
+    FieldBound fb = field_.Bound(box, terms, predominance ? &termRanges_ : nullptr);
     if (s.useValueRange) {
         if (fb.valueMin > threshold_) {
             Count(c.rangeFired);
@@ -470,7 +483,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
             return kEmptyRef;
         }
     }
-    if (predominance && !OwnMayPredominate(field_.Rows(), termRanges_)) {
+    if (predominance && !OwnMayPredominate(terms, termRanges_)) {
         Count(c.patchFired);
         return kEmptyRef;
     }
@@ -478,7 +491,8 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     double b = HalfDiagonal(box);
     // The cell's edge in lattice steps (>= 2 down to maxDepth), and its centre's point.
     const uint32_t edge = 1u << (s.maxDepth + 1 - depth), half = edge / 2;
-    double gc = LatticeValue(centre, {low.x + half, low.y + half, low.z + half}) - threshold_;
+    double gc =
+        LatticeValue(centre, {low.x + half, low.y + half, low.z + half}, terms) - threshold_;
     Ref mark = gc > 0 ? kFullRef : kEmptyRef;
     if (s.useHeuristic1 && std::abs(gc) > b * fb.L) {
         Count(c.h1Fired);
@@ -487,7 +501,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     // 1bis needs |g(C)| > b‖∇F(C)‖ + ½b²G >= ½b²G: test that first, so the gradient is
     // evaluated only where the heuristic can fire.
     if (s.useHeuristic1bis && std::isfinite(fb.G) && std::abs(gc) > 0.5 * b * b * fb.G) {
-        double grad = Length(field_.Gradient(centre));
+        double grad = Length(field_.Gradient(centre, terms));
         if (std::abs(gc) > b * grad + 0.5 * b * b * fb.G) {
             Count(c.h1bisFired);
             return mark;
@@ -495,7 +509,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     }
     if (depth >= s.maxDepth) {
         Count(c.h2Fired);
-        return MakeLeaf(box, fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G, terms);
     }
     // Heuristics 3 and 3bis stop early only where G is finite: a leaf with infinite G would
     // leave the search no curvature bound at all.
@@ -505,24 +519,24 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
             for (int i = 0; i < 8 && !(anyIn && anyOut); ++i) {
                 LatticePoint q{low.x + ((i & 1) ? edge : 0), low.y + ((i & 2) ? edge : 0),
                                low.z + ((i & 4) ? edge : 0)};
-                bool in = LatticeValue(box.Corner(i), q) > threshold_;
+                bool in = LatticeValue(box.Corner(i), q, terms) > threshold_;
                 anyIn |= in;
                 anyOut |= !in;
             }
             if (anyIn && anyOut) {
                 Count(c.h3Fired);
-                return MakeLeaf(box, fb.L, fb.G);
+                return MakeLeaf(box, fb.L, fb.G, terms);
             }
         }
         if (s.useHeuristic3bis && fb.minDistance > 0 && b / fb.minDistance < s.dRatio) {
             Count(c.h3bisFired);
-            return MakeLeaf(box, fb.L, fb.G);
+            return MakeLeaf(box, fb.L, fb.G, terms);
         }
     }
     if (MemoryBytes() + sizeof(Internal) + 8 * sizeof(Leaf) > s.memoryBudget) {
         Count(c.budgetFired);
         degraded_ = true;
-        return MakeLeaf(box, fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G, terms);
     }
     // Subdivide. Children's nodes are allocated after this point, so a merge below can
     // release them by truncating the three arrays (stack-like allocation; a leaf shares only
@@ -533,7 +547,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     for (int i = 0; i < 8; ++i) {
         LatticePoint q{low.x + ((i & 1) ? half : 0), low.y + ((i & 2) ? half : 0),
                        low.z + ((i & 4) ? half : 0)};
-        node.child[i] = Build(ChildBox(box, i), depth + 1, q);
+        node.child[i] = Build(ChildBox(box, i), depth + 1, q, terms);
     }
     bool allEmpty = true, allFull = true, allLeaves = true;
     double maxChildG = 0;
@@ -555,7 +569,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
         internals_.resize(internalMark);
         leaves_.resize(leafMark);
         terms_.resize(termMark);
-        return MakeLeaf(box, fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G, terms);
     }
     internals_.push_back(node);
     return static_cast<Ref>(internals_.size() - 1);

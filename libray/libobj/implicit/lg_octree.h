@@ -212,19 +212,28 @@ class LGOctree {
     struct LatticePoint {
         uint32_t x, y, z;
     };
-    Ref Build(const Bounds3& box, int depth, LatticePoint low);
-    // F at a lattice point (p its coordinates), evaluated once per build: neighbouring cells
-    // share corners, and a cell's centre is its children's shared corner. Every cell derives
-    // a given lattice point's coordinates by the same midpoint operations, so the cached
-    // value is exactly what a fresh evaluation would return.
-    double LatticeValue(const Vec3& p, LatticePoint q);
+    // Builds cell `box`. `parentTerms` holds every row of the field meeting the parent cell
+    // padded by leafPadding_ (Field::TermsMeeting; the field's rows at the root): the cell
+    // keeps those meeting its own padded box, and its bound, field values and leaf list sum
+    // only these. Every other row's support box misses the cell, so it is skipped by the
+    // full sums and bound too: the results are bit-identical, at the cost of the terms near
+    // the cell instead of all the patch's terms.
+    Ref Build(const Bounds3& box, int depth, LatticePoint low,
+              std::span<const int32_t> parentTerms);
+    // F at a lattice point (p its coordinates, a corner or the centre of a cell whose
+    // TermsMeeting list is `terms`), evaluated once per build: neighbouring cells share
+    // corners, and a cell's centre is its children's shared corner. Every cell derives a
+    // given lattice point's coordinates by the same midpoint operations, so the cached value
+    // is exactly what a fresh evaluation would return.
+    double LatticeValue(const Vec3& p, LatticePoint q, std::span<const int32_t> terms);
     // `ranges[k]` is the value range of row terms[k] over the cell (Field::Bound); `terms`
     // holds every row of the field meeting the cell.
     bool OwnMayPredominate(std::span<const int32_t> terms,
                            const std::vector<TermValueRange>& ranges) const;
     // A leaf for cell `box`, with the active terms of the cell padded by leafPadding_
-    // (shared with an equal list made before when the list cache finds one).
-    Ref MakeLeaf(const Bounds3& box, double L, double G);
+    // (shared with an equal list made before when the list cache finds one), taken from the
+    // cell's TermsMeeting list `terms`.
+    Ref MakeLeaf(const Bounds3& box, double L, double G, std::span<const int32_t> terms);
     // Extends leafBox_ by the cells of the leaves below `ref` (cell `box`).
     void ExtendLeafBox(Ref ref, const Bounds3& box);
     // The leaves below `ref` (cell `box`) met by the ray within [t0, t1], in ray order.
@@ -252,6 +261,9 @@ class LGOctree {
     Ref root_ = kEmptyRef;
     bool degraded_ = false;
     std::vector<TermValueRange> termRanges_;  // build scratch (Build's predominance test)
+    // Build scratch: the TermsMeeting list of the cell being built at each depth (a
+    // thread's reused arrays, held only during the build).
+    std::vector<std::vector<int32_t>> cellTerms_;
 };
 
 // The statistics counter of Ridders iterations (every octree search counts into it), so
