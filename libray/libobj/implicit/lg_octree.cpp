@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "libcommon/error.h"
 #include "libcommon/stats.h"
@@ -354,7 +355,7 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     const Vec3 extent = box_.Extent();
     leafPadding_ = kLeafBoxPadding * std::max({extent.x, extent.y, extent.z});
     thread_local std::vector<Internal> internalScratch;
-    thread_local std::vector<Leaf> leafScratch;
+    thread_local std::vector<BuildLeaf> leafScratch;
     thread_local std::vector<int32_t> termScratch;
     internalScratch.clear();
     leafScratch.clear();
@@ -365,16 +366,19 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
         cellTermScratch.resize(static_cast<size_t>(settings_.maxDepth) + 1);
     }
     internals_.swap(internalScratch);
-    leaves_.swap(leafScratch);
+    buildLeaves_.swap(leafScratch);
     terms_.swap(termScratch);
     cellTerms_.swap(cellTermScratch);
     root_ = Build(box_, 0, {0, 0, 0}, field_.Rows());
     internals_.swap(internalScratch);
-    leaves_.swap(leafScratch);
+    buildLeaves_.swap(leafScratch);
     terms_.swap(termScratch);
     cellTerms_.swap(cellTermScratch);
     internals_.assign(internalScratch.begin(), internalScratch.end());
-    leaves_.assign(leafScratch.begin(), leafScratch.end());
+    leaves_.reserve(leafScratch.size());
+    for (const BuildLeaf& leaf : leafScratch) {
+        leaves_.push_back({UpperFloat(leaf.L), UpperFloat(leaf.G), leaf.firstTerm, leaf.termCount});
+    }
     terms_.assign(termScratch.begin(), termScratch.end());
     std::vector<TermValueRange>().swap(termRanges_);
     ExtendLeafBox(root_, box_);
@@ -387,9 +391,17 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     }
 }
 
+// During the build the leaves are in buildLeaves_, afterwards in leaves_ (one of the two is
+// empty); either way each costs a final Leaf.
 std::size_t LGOctree::MemoryBytes() const {
-    return internals_.size() * sizeof(Internal) + leaves_.size() * sizeof(Leaf) +
-           terms_.size() * sizeof(int32_t);
+    return internals_.size() * sizeof(Internal) +
+           (leaves_.size() + buildLeaves_.size()) * sizeof(Leaf) + terms_.size() * sizeof(int32_t);
+}
+
+float UpperFloat(double x) {
+    if (!(x <= std::numeric_limits<float>::max())) return std::numeric_limits<float>::infinity();
+    const float f = static_cast<float>(x);  // the nearest float, possibly below x
+    return f < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
 // False when some other term's smallest value over the box exceeds the own term's largest
@@ -442,8 +454,8 @@ LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G,
     } else {
         cached = {static_cast<uint32_t>(first), static_cast<uint32_t>(count)};
     }
-    leaves_.push_back({L, G, static_cast<uint32_t>(first), static_cast<uint32_t>(count)});
-    return kFirstLeafRef - static_cast<Ref>(leaves_.size() - 1);
+    buildLeaves_.push_back({L, G, static_cast<uint32_t>(first), static_cast<uint32_t>(count)});
+    return kFirstLeafRef - static_cast<Ref>(buildLeaves_.size() - 1);
 }
 
 void LGOctree::ExtendLeafBox(Ref ref, const Bounds3& box) {
@@ -541,7 +553,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
     // Subdivide. Children's nodes are allocated after this point, so a merge below can
     // release them by truncating the three arrays (stack-like allocation; a leaf shares only
     // lists made before it, so truncated lists serve only truncated leaves).
-    std::size_t internalMark = internals_.size(), leafMark = leaves_.size(),
+    std::size_t internalMark = internals_.size(), leafMark = buildLeaves_.size(),
                 termMark = terms_.size();
     Internal node;
     for (int i = 0; i < 8; ++i) {
@@ -555,19 +567,21 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
         allEmpty &= r == kEmptyRef;
         allFull &= r == kFullRef;
         allLeaves &= r <= kFirstLeafRef;
-        if (r <= kFirstLeafRef) maxChildG = std::max(maxChildG, leaves_[kFirstLeafRef - r].G);
+        if (r <= kFirstLeafRef) {
+            maxChildG = std::max(maxChildG, buildLeaves_[kFirstLeafRef - r].G);
+        }
     }
     if (s.useHeuristic4 && (allEmpty || allFull)) {
         Count(c.h4Fired);
         internals_.resize(internalMark);
-        leaves_.resize(leafMark);
+        buildLeaves_.resize(leafMark);
         terms_.resize(termMark);
         return allEmpty ? kEmptyRef : kFullRef;
     }
     if (s.useHeuristic5 && allLeaves && maxChildG >= s.h5GRatio * fb.G) {
         Count(c.h5Fired);
         internals_.resize(internalMark);
-        leaves_.resize(leafMark);
+        buildLeaves_.resize(leafMark);
         terms_.resize(termMark);
         return MakeLeaf(box, fb.L, fb.G, terms);
     }

@@ -27,8 +27,8 @@
 //   4      after subdivision: all eight children Full (or all Empty) → parent likewise.
 //   5      after subdivision: all children leaves and max child G >= h5GRatio·G → one
 //          leaf with the parent's L and G (still valid on every child).
-// Empty/Full cells take no memory (tagged child references); leaves store L, G and their
-// active terms (the terms not identically 0 in the cell), which the search sums alone.
+// Empty/Full cells take no memory (tagged child references); leaves store L and G (rounded
+// up to floats) and their active terms (the terms not identically 0 in the cell), which the search sums alone.
 //
 // Per-leaf search over [tA, tB] (λ = tB − tA, gA, gB the end values, tm the midpoint), in
 // their sound forms (research note §4.2); each but 2 switchable:
@@ -98,10 +98,10 @@ struct OctreeSettings {
     bool useHeuristic5 = true;
     bool usePredominancePruning = true;  // the "patch" rule; needs an own term
     double h5GRatio = 0.9;  // "not too different": children keep >= 90 % of the parent's G
-    // Node memory per tree (internal nodes 32 bytes, leaves 24 bytes plus 4 bytes per
+    // Node memory per tree (internal nodes 32 bytes, leaves 16 bytes plus 4 bytes per
     // entry of their active-term lists). A cell subdivides only while one more internal
     // node and eight leaves fit, lists not counted, so the tree may overshoot the budget by
-    // that much (224 bytes) plus eight lists per level of the path being built.
+    // that much (160 bytes) plus eight lists per level of the path being built.
     std::size_t memoryBudget = static_cast<std::size_t>(Limits().octreeBytes);
 
     // Search. Root accuracy and splitting floor, as object-space distances.
@@ -201,8 +201,15 @@ class LGOctree {
     struct Internal {
         Ref child[8];
     };
-    // A leaf's bounds and its active terms, terms_[firstTerm, firstTerm + termCount).
+    // A leaf's bounds and its active terms, terms_[firstTerm, firstTerm + termCount). L and
+    // G are the cell's bounds rounded up to floats (UpperFloat): still bounds, and a leaf
+    // takes 16 bytes instead of 24.
     struct Leaf {
+        float L, G;
+        uint32_t firstTerm, termCount;
+    };
+    // A leaf while its tree is built, with the exact bounds (heuristic 5 compares them).
+    struct BuildLeaf {
         double L, G;
         uint32_t firstTerm, termCount;
     };
@@ -257,6 +264,7 @@ class LGOctree {
     OctreeSettings settings_;
     std::vector<Internal> internals_;
     std::vector<Leaf> leaves_;
+    std::vector<BuildLeaf> buildLeaves_;  // the leaves during the build (then empty)
     std::vector<int32_t> terms_;  // the leaves' active-term lists
     Ref root_ = kEmptyRef;
     bool degraded_ = false;
@@ -265,6 +273,10 @@ class LGOctree {
     // thread's reused arrays, held only during the build).
     std::vector<std::vector<int32_t>> cellTerms_;
 };
+
+// The smallest float not below x, for x >= 0 (+infinity above the float range, and for
+// x = +infinity): a bound stored as float stays a bound.
+float UpperFloat(double x);
 
 // The statistics counter of Ridders iterations (every octree search counts into it), so
 // callers can attribute iterations to an object by differences of ThreadCount. The build

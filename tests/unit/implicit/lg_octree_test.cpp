@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "libcommon/error.h"
@@ -310,6 +311,62 @@ TEST(LGOctree, MemoryBudgetDegradesWithWarningAndStaysExact) {
     auto got = scene.Hit({{0.1, 0.2, -5}, {0, 0, 1}});
     ASSERT_TRUE(got.has_value());
     EXPECT_NEAR(*got, 5 - std::sqrt(0.25 - 0.05), 1e-7);
+}
+
+// UpperFloat returns a float >= x, one float step at most above the nearest float, and
+// +infinity beyond the float range.
+TEST(LGOctree, UpperFloatIsTheNextFloatUp) {
+    Rng rng(11);
+    for (int i = 0; i < 100000; ++i) {
+        const double x = std::ldexp(rng.Uniform(), static_cast<int>(rng.Uniform() * 300) - 150);
+        const float f = UpperFloat(x);
+        ASSERT_GE(static_cast<double>(f), x) << x;
+        ASSERT_LT(static_cast<double>(std::nextafter(f, 0.0f)), x) << x;
+    }
+    EXPECT_EQ(UpperFloat(0), 0.0f);
+    EXPECT_EQ(UpperFloat(1), 1.0f);
+    EXPECT_EQ(UpperFloat(1e300), std::numeric_limits<float>::infinity());
+    EXPECT_EQ(UpperFloat(std::numeric_limits<double>::infinity()),
+              std::numeric_limits<float>::infinity());
+}
+
+// The L and G a leaf hands the search (stored rounded up to floats) bound the field along
+// every ray piece in the leaf: the analytic directional derivative at sampled parameters
+// and central second differences (h = 1e-3 of the span; slack 1e-6 absolute and relative
+// for round-off, as in the field's bound tests).
+TEST(LGOctree, LeafBoundsHoldAlongRayPieces) {
+    int checked = 0;
+    for (uint64_t seed = 1; seed <= 20; ++seed) {
+        Rng rng(seed);
+        auto kernel = [&rng](int) {
+            return rng.Uniform() < 0.5 ? Kernel::Blob(1, Uniform(rng, 0.6, 1.2))
+                                       : Kernel::GascuelQuadratic(0.4, 2, 1.1);
+        };
+        Scene scene(RandomPointTerms(rng, kernel), 0.6);
+        for (int r = 0; r < 50; ++r) {
+            Ray ray{RandomPoint(rng, -3, 3), RandomUnit(rng) * Uniform(rng, 0.5, 2)};
+            scene.tree.Traverse(ray, -1e9, 1e9, [&](const LeafSpan& span) {
+                const double len = Length(ray.dir), lambda = span.tExit - span.tEnter;
+                if (!(lambda > 1e-6)) return false;
+                const double h = 1e-3 * lambda;
+                for (int i = 0; i < 20; ++i) {
+                    const double t = span.tEnter + h + (lambda - 2 * h) * rng.Uniform();
+                    const Vec3 p = ray.At(t);
+                    const double slope = Dot(scene.field.Gradient(p), ray.dir);
+                    EXPECT_LE(std::abs(slope), span.L * len * (1 + 1e-12) + 1e-12);
+                    if (!std::isfinite(span.G)) continue;
+                    const double second = (scene.field.Value(ray.At(t - h)) -
+                                           2 * scene.field.Value(p) +
+                                           scene.field.Value(ray.At(t + h))) /
+                                          (h * h);
+                    EXPECT_LE(std::abs(second), span.G * len * len * (1 + 1e-6) + 1e-6);
+                    ++checked;
+                }
+                return false;
+            });
+        }
+    }
+    EXPECT_GT(checked, 1000);
 }
 
 TEST(LGOctree, CountsWork) {
