@@ -762,6 +762,9 @@ bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, Primitive
         if (node.count > 0) {
             for (int i = node.first; i < node.first + node.count; ++i) {
                 int patch = bvhOrder_[i];
+                // A ray missing the own term's support meets no acceptable root: skip the
+                // patch before its tree is built (the result is the same).
+                if (!patches_[patch].MayHoldRoot(ray, tMin, best)) continue;
                 std::optional<double> t =
                     PatchFirstRoot(patches_[patch], Tree(patch), ray, tMin, best);
                 if (t) {

@@ -30,6 +30,23 @@ bool Patch::Predominates(const Vec3& p) const {
     return true;
 }
 
+bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {
+    const FieldTerm& own = field_.Terms()[Own()];
+    const auto* point = std::get_if<PointSkeleton>(&own.skeleton);
+    const double a = LengthSquared(ray.dir);
+    if (!point || !(a > 0)) return true;
+    const Vec3 oc = ray.origin - point->center;
+    const double radius =
+        own.kernel.Radius() * (1 + kSupportMargin) + kOriginMargin * Length(oc);
+    // The closest approach to the centre, at parameter tc and squared distance d2; the
+    // enlarged ball spans tc ± half. NaNs (overflow) fail both tests: true.
+    const double tc = -Dot(oc, ray.dir) / a;
+    const double d2 = LengthSquared(ray.At(tc) - point->center);
+    if (d2 > radius * radius) return false;
+    const double half = std::sqrt((radius * radius - d2) / a);
+    return !(tc + half < tMin || tc - half > tMax);
+}
+
 std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
                                 const std::vector<std::pair<int, int>>& blendPairs,
                                 const std::vector<std::pair<int, int>>& separatePairs) {

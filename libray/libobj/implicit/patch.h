@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "libcommon/ray.h"
 #include "libobj/implicit/field.h"
 
 namespace rs {
@@ -47,6 +48,16 @@ class Patch {
 
     // Whether the own term predominates at p (ties to the lowest term index).
     bool Predominates(const Vec3& p) const;
+    // False only when the ray's piece (tMin, tMax) surely misses the own term's support
+    // {d < R}, where no root can be accepted (the own term is 0 there; see Box()), so the
+    // patch's search may be skipped, and its tree left unbuilt. Point skeletons test the
+    // ball of radius R around the centre, enlarged by kSupportMargin for rounding; other
+    // kinds are not tested (true: their support box, Box(), is the test the caller makes).
+    bool MayHoldRoot(const Ray& ray, double tMin, double tMax) const;
+    // The ball's enlargement: relative 1e-6 of R plus 1e-9 of the ray origin's distance to
+    // the centre. The closest approach and the accepted points o + t·d are computed with
+    // errors of a few ulps of those lengths (~1e-15 relative), far inside it.
+    static constexpr double kSupportMargin = 1e-6, kOriginMargin = 1e-9;
     // Adds a deformation term to the patch field (contact.h); predominance, members and box
     // are unchanged.
     void Deform(std::shared_ptr<const FieldDeformation> deformation) {

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <string>
+
+#include "test_util.h"
 
 namespace rs {
 namespace {
@@ -95,6 +98,41 @@ TEST(Patch, AutomaticNeighboursMatchAllPairsOnRandomTerms) {
         EXPECT_EQ(patches[next++].Members(), expected) << "term " << i;
     }
     EXPECT_EQ(next, patches.size());
+}
+
+// MayHoldRoot is false only for ray pieces where the own term is 0 at every sampled point
+// (so no root can be accepted there), and it passes most pieces that enter the ball.
+TEST(Patch, MayHoldRootFalseOnlyWhereTheOwnTermVanishes) {
+    Rng rng(3);
+    std::vector<FieldTerm> terms{Point("a", {0.2, -0.1, 0.3}), Point("b", {1, 0, 0})};
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
+    const Patch& patch = patches[0];
+    int skipped = 0, entering = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Ray ray{testing::RandomPoint(rng, -4, 4),
+                testing::RandomUnit(rng) * testing::Uniform(rng, 0.1, 3)};
+        const double tMin = testing::Uniform(rng, -2, 2), tMax = tMin + testing::Uniform(rng, 0, 6);
+        bool ownSomewhere = false;
+        for (int k = 0; k <= 2000 && !ownSomewhere; ++k) {
+            const Vec3 p = ray.At(tMin + (tMax - tMin) * k / 2000);
+            ownSomewhere = patch.GetField().TermValue(patch.Own(), p) > 0;
+        }
+        if (!patch.MayHoldRoot(ray, tMin, tMax)) {
+            ++skipped;
+            ASSERT_FALSE(ownSomewhere) << "ray " << i;
+        } else if (ownSomewhere) {
+            ++entering;
+        }
+    }
+    EXPECT_GT(skipped, 5000);
+    EXPECT_GT(entering, 1000);
+    // Grazing: rays passing the ball's surface at R(1 ± 1e-3) on either side.
+    const double radius = terms[0].kernel.Radius();
+    for (double f : {1 - 1e-3, 1 + 1e-3}) {
+        Ray ray{Vec3{0.2, -0.1, 0.3} + Vec3{-5, radius * f, 0}, {1, 0, 0}};
+        EXPECT_EQ(patch.MayHoldRoot(ray, 0, 10), f < 1) << f;
+        EXPECT_FALSE(patch.MayHoldRoot(ray, 6, 10));  // the chord lies near t = 5
+    }
 }
 
 }  // namespace
