@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -354,10 +355,10 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     // exactly the nodes built (no spare capacity).
     const Vec3 extent = box_.Extent();
     leafPadding_ = kLeafBoxPadding * std::max({extent.x, extent.y, extent.z});
-    thread_local std::vector<Internal> internalScratch;
+    thread_local std::vector<Ref> nodeScratch;
     thread_local std::vector<BuildLeaf> leafScratch;
     thread_local std::vector<int32_t> termScratch;
-    internalScratch.clear();
+    nodeScratch.clear();
     leafScratch.clear();
     LeafLists().Clear();
     termScratch.clear();
@@ -365,16 +366,16 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     if (cellTermScratch.size() < static_cast<size_t>(settings_.maxDepth) + 1) {
         cellTermScratch.resize(static_cast<size_t>(settings_.maxDepth) + 1);
     }
-    internals_.swap(internalScratch);
+    nodes_.swap(nodeScratch);
     buildLeaves_.swap(leafScratch);
     terms_.swap(termScratch);
     cellTerms_.swap(cellTermScratch);
     root_ = Build(box_, 0, {0, 0, 0}, field_.Rows());
-    internals_.swap(internalScratch);
+    nodes_.swap(nodeScratch);
     buildLeaves_.swap(leafScratch);
     terms_.swap(termScratch);
     cellTerms_.swap(cellTermScratch);
-    internals_.assign(internalScratch.begin(), internalScratch.end());
+    nodes_.assign(nodeScratch.begin(), nodeScratch.end());
     leaves_.reserve(leafScratch.size());
     for (const BuildLeaf& leaf : leafScratch) {
         leaves_.push_back({UpperFloat(leaf.L), UpperFloat(leaf.G), leaf.firstTerm, leaf.termCount});
@@ -394,7 +395,7 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
 // During the build the leaves are in buildLeaves_, afterwards in leaves_ (one of the two is
 // empty); either way each costs a final Leaf.
 std::size_t LGOctree::MemoryBytes() const {
-    return internals_.size() * sizeof(Internal) +
+    return nodes_.size() * sizeof(Ref) +
            (leaves_.size() + buildLeaves_.size()) * sizeof(Leaf) + terms_.size() * sizeof(int32_t);
 }
 
@@ -433,6 +434,30 @@ bool LGOctree::OwnExcluded(const Bounds3& box) const {
     return false;
 }
 
+LGOctree::Ref LGOctree::ChildRef(Ref node, int child) const {
+    const uint32_t classes = static_cast<uint32_t>(nodes_[node]);
+    if (!((classes >> child) & 1)) return (classes >> (8 + child)) & 1 ? kFullRef : kEmptyRef;
+    return nodes_[node + 1 + std::popcount(classes & ((1u << child) - 1))];
+}
+
+LGOctree::Ref LGOctree::PushInternal(const Ref (&children)[8]) {
+    const Ref self = static_cast<Ref>(nodes_.size());
+    uint32_t classes = 0;
+    for (int i = 0; i < 8; ++i) {
+        if (children[i] >= 0 || children[i] <= kFirstLeafRef) {
+            classes |= 1u << i;
+        } else if (children[i] == kFullRef) {
+            classes |= 1u << (8 + i);
+        }
+    }
+    nodes_.push_back(static_cast<Ref>(classes));
+    for (const Ref r : children) {
+        if (r >= 0 || r <= kFirstLeafRef) nodes_.push_back(r);
+    }
+    ++internalCount_;
+    return self;
+}
+
 LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G,
                                  std::span<const int32_t> terms) {
     std::size_t first = terms_.size();
@@ -462,7 +487,7 @@ void LGOctree::ExtendLeafBox(Ref ref, const Bounds3& box) {
     if (ref <= kFirstLeafRef) {
         leafBox_.Extend(box);
     } else if (ref >= 0) {
-        for (int i = 0; i < 8; ++i) ExtendLeafBox(internals_[ref].child[i], ChildBox(box, i));
+        for (int i = 0; i < 8; ++i) ExtendLeafBox(ChildRef(ref, i), ChildBox(box, i));
     }
 }
 
@@ -545,7 +570,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
             return MakeLeaf(box, fb.L, fb.G, terms);
         }
     }
-    if (MemoryBytes() + sizeof(Internal) + 8 * sizeof(Leaf) > s.memoryBudget) {
+    if (MemoryBytes() + kMaxInternalBytes + 8 * sizeof(Leaf) > s.memoryBudget) {
         Count(c.budgetFired);
         degraded_ = true;
         return MakeLeaf(box, fb.L, fb.G, terms);
@@ -553,17 +578,18 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
     // Subdivide. Children's nodes are allocated after this point, so a merge below can
     // release them by truncating the three arrays (stack-like allocation; a leaf shares only
     // lists made before it, so truncated lists serve only truncated leaves).
-    std::size_t internalMark = internals_.size(), leafMark = buildLeaves_.size(),
+    std::size_t nodeMark = nodes_.size(), leafMark = buildLeaves_.size(),
                 termMark = terms_.size();
-    Internal node;
+    const int internalMark = internalCount_;
+    Ref children[8];
     for (int i = 0; i < 8; ++i) {
         LatticePoint q{low.x + ((i & 1) ? half : 0), low.y + ((i & 2) ? half : 0),
                        low.z + ((i & 4) ? half : 0)};
-        node.child[i] = Build(ChildBox(box, i), depth + 1, q, terms);
+        children[i] = Build(ChildBox(box, i), depth + 1, q, terms);
     }
     bool allEmpty = true, allFull = true, allLeaves = true;
     double maxChildG = 0;
-    for (Ref r : node.child) {
+    for (Ref r : children) {
         allEmpty &= r == kEmptyRef;
         allFull &= r == kFullRef;
         allLeaves &= r <= kFirstLeafRef;
@@ -573,20 +599,21 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
     }
     if (s.useHeuristic4 && (allEmpty || allFull)) {
         Count(c.h4Fired);
-        internals_.resize(internalMark);
+        nodes_.resize(nodeMark);
+        internalCount_ = internalMark;
         buildLeaves_.resize(leafMark);
         terms_.resize(termMark);
         return allEmpty ? kEmptyRef : kFullRef;
     }
     if (s.useHeuristic5 && allLeaves && maxChildG >= s.h5GRatio * fb.G) {
         Count(c.h5Fired);
-        internals_.resize(internalMark);
+        nodes_.resize(nodeMark);
+        internalCount_ = internalMark;
         buildLeaves_.resize(leafMark);
         terms_.resize(termMark);
         return MakeLeaf(box, fb.L, fb.G, terms);
     }
-    internals_.push_back(node);
-    return static_cast<Ref>(internals_.size() - 1);
+    return PushInternal(children);
 }
 
 template <class Visitor>
@@ -598,7 +625,7 @@ bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, dou
         return visit(LeafSpan{t0, t1, leaf.L, leaf.G,
                               {terms_.data() + leaf.firstTerm, leaf.termCount}});
     }
-    const Internal& node = internals_[ref];
+    const uint32_t classes = static_cast<uint32_t>(nodes_[ref]);
     // Split [t0, t1] where the ray crosses the three mid-planes; each piece lies in one
     // child, found from the piece's midpoint. Empty and Full children are skipped before
     // their boxes are formed.
@@ -620,8 +647,8 @@ bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, dou
         if (b <= a && n > 2) continue;
         const Vec3 p = ray.At(0.5 * (a + b));
         const int child = (p.x >= c.x ? 1 : 0) | (p.y >= c.y ? 2 : 0) | (p.z >= c.z ? 4 : 0);
-        const Ref next = node.child[child];
-        if (next == kEmptyRef || next == kFullRef) continue;
+        if (!((classes >> child) & 1)) continue;  // Empty or Full
+        const Ref next = nodes_[ref + 1 + std::popcount(classes & ((1u << child) - 1))];
         Bounds3 sub;  // ChildBox(box, child), from the centre already at hand
         sub.lo = {(child & 1) ? c.x : box.lo.x, (child & 2) ? c.y : box.lo.y,
                   (child & 4) ? c.z : box.lo.z};
@@ -647,7 +674,7 @@ CellClass LGOctree::Classify(const Vec3& p) const {
     while (ref >= 0) {
         int child = ChildIndexOf(box, p);
         box = ChildBox(box, child);
-        ref = internals_[ref].child[child];
+        ref = ChildRef(ref, child);
     }
     if (ref == kEmptyRef) return CellClass::Empty;
     if (ref == kFullRef) return CellClass::Full;

@@ -27,7 +27,7 @@
 //   4      after subdivision: all eight children Full (or all Empty) → parent likewise.
 //   5      after subdivision: all children leaves and max child G >= h5GRatio·G → one
 //          leaf with the parent's L and G (still valid on every child).
-// Empty/Full cells take no memory (tagged child references); leaves store L and G (rounded
+// Empty/Full cells take no memory (two bits in their parent's record); leaves store L and G (rounded
 // up to floats) and their active terms (the terms not identically 0 in the cell), which the search sums alone.
 //
 // Per-leaf search over [tA, tB] (λ = tB − tA, gA, gB the end values, tm the midpoint), in
@@ -98,10 +98,11 @@ struct OctreeSettings {
     bool useHeuristic5 = true;
     bool usePredominancePruning = true;  // the "patch" rule; needs an own term
     double h5GRatio = 0.9;  // "not too different": children keep >= 90 % of the parent's G
-    // Node memory per tree (internal nodes 32 bytes, leaves 16 bytes plus 4 bytes per
-    // entry of their active-term lists). A cell subdivides only while one more internal
-    // node and eight leaves fit, lists not counted, so the tree may overshoot the budget by
-    // that much (160 bytes) plus eight lists per level of the path being built.
+    // Node memory per tree (internal nodes 4 bytes plus 4 per child that is neither Empty
+    // nor Full, leaves 16 bytes plus 4 bytes per entry of their active-term lists). A cell
+    // subdivides only while one more internal node (at most 36 bytes) and eight leaves fit,
+    // lists not counted, so the tree may overshoot the budget by that much (164 bytes) plus
+    // eight lists per level of the path being built.
     std::size_t memoryBudget = static_cast<std::size_t>(Limits().octreeBytes);
 
     // Search. Root accuracy and splitting floor, as object-space distances.
@@ -188,19 +189,27 @@ class LGOctree {
     std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax,
                                     const std::function<bool(double)>& accept = {}) const;
 
-    int InternalCount() const { return static_cast<int>(internals_.size()); }
+    int InternalCount() const { return internalCount_; }
     int LeafCount() const { return static_cast<int>(leaves_.size()); }
     std::size_t MemoryBytes() const;
     // True when the memory budget stopped subdivision somewhere.
     bool Degraded() const { return degraded_; }
 
   private:
-    // Child reference: >= 0 internal node index; kEmptyRef, kFullRef; <= kFirstLeafRef leaf.
+    // Child reference: >= 0 internal node (its record's offset in nodes_); kEmptyRef,
+    // kFullRef; <= kFirstLeafRef leaf.
     using Ref = int32_t;
     static constexpr Ref kEmptyRef = -1, kFullRef = -2, kFirstLeafRef = -3;
-    struct Internal {
-        Ref child[8];
-    };
+    // An internal node is a record in nodes_: a header word whose bit i (0–7) says that
+    // child i is live (an internal node or a leaf) and bit 8 + i that a child that is not
+    // live is Full (else Empty), then the references of the live children in child order.
+    // Empty and Full children take no word: a record takes 4 bytes plus 4 per live child
+    // (at most kMaxInternalBytes), against 32 bytes for eight references.
+    static constexpr std::size_t kMaxInternalBytes = 9 * sizeof(Ref);
+    // The reference of child `child` of internal node `node`.
+    Ref ChildRef(Ref node, int child) const;
+    // Appends the record of an internal node with these children; returns its reference.
+    Ref PushInternal(const Ref (&children)[8]);
     // A leaf's bounds and its active terms, terms_[firstTerm, firstTerm + termCount). L and
     // G are the cell's bounds rounded up to floats (UpperFloat): still bounds, and a leaf
     // takes 16 bytes instead of 24.
@@ -262,7 +271,8 @@ class LGOctree {
     static constexpr double kLeafBoxPadding = 1e-6;
     double leafPadding_ = 0;  // kLeafBoxPadding × the root box's longest edge
     OctreeSettings settings_;
-    std::vector<Internal> internals_;
+    std::vector<Ref> nodes_;  // the internal nodes' records
+    int internalCount_ = 0;
     std::vector<Leaf> leaves_;
     std::vector<BuildLeaf> buildLeaves_;  // the leaves during the build (then empty)
     std::vector<int32_t> terms_;  // the leaves' active-term lists
