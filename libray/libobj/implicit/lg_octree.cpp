@@ -127,7 +127,7 @@ class RaySearch {
     }
 
     bool Ridders(double a, double ga, double b, double gb) {
-        if (tree_.OwnExcluded(Bounds3(ray_.At(a), ray_.At(b)))) {
+        if (tree_.OwnExcluded(Bounds3(ray_.At(a), ray_.At(b)), terms_)) {
             Count(Counters().excludedSegments);
             return false;
         }
@@ -420,12 +420,12 @@ bool LGOctree::OwnMayPredominate(std::span<const int32_t> terms,
     return true;
 }
 
-bool LGOctree::OwnExcluded(const Bounds3& box) const {
+bool LGOctree::OwnExcluded(const Bounds3& box, std::span<const int32_t> terms) const {
     if (ownTerm_ < 0 || !settings_.usePredominancePruning) return false;
     double ownLo, ownHi;
     field_.TermRange(ownTerm_, box, ownLo, ownHi);
     const double limit = ownHi + kExclusionMargin * std::abs(ownHi);
-    for (const int j : field_.Rows()) {
+    for (const int j : terms) {
         if (j == ownTerm_) continue;
         double lo, hi;
         field_.TermRange(j, box, lo, hi);

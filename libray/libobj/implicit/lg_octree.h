@@ -180,8 +180,12 @@ class LGOctree {
     // is skipped on a ray segment whose box is excluded: every point the solver could
     // return lies in that box (the ray's coordinates are monotone in t under rounding),
     // where `accept` would reject it, so the result is the same without the solve. The
-    // margin covers the rounding of TermRange against TermValue (a few ulps).
-    bool OwnExcluded(const Bounds3& box) const;
+    // margin covers the rounding of TermRange against TermValue (a few ulps). Only the rows
+    // in `terms` are tested as excluding terms: a list holding every row that may be
+    // non-zero somewhere in the box (the field's rows, or a leaf's active list for a box in
+    // the leaf) gives the same answer as all rows, since a term that is 0 over the whole box
+    // has a TermRange whose lower end is at most 0 (its upper distance bound is >= R).
+    bool OwnExcluded(const Bounds3& box, std::span<const int32_t> terms) const;
     static constexpr double kExclusionMargin = 1e-9;
 
     // The first t in (tMin, tMax) where g changes sign along the ray (to the tolerance) and
