@@ -352,9 +352,10 @@ void ImplicitSurface::BuildTree(int i) const {
     for (size_t k = 0; k < sources.size(); ++k) before[k] = ThreadCount(sources[k].first);
     const auto start = std::chrono::steady_clock::now();
     if (options_.method == ImplicitMethod::Kb89) {
-        trees_[i].tree.emplace(whole_, options_.threshold, bounds_, options_.octree);
+        trees_[i].tree =
+            std::make_unique<LGOctree>(whole_, options_.threshold, bounds_, options_.octree);
     } else {
-        trees_[i].tree.emplace(
+        trees_[i].tree = std::make_unique<LGOctree>(
             BuildPatchOctree(patches_[i], options_.threshold, PatchSettings(patches_[i])));
     }
     const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
@@ -436,7 +437,8 @@ void ImplicitSurface::BuildStructures() {
                                   options_.threshold, options_.octree, patches_, trees);
         for (size_t i = 0; i < trees.size(); ++i) {
             LazyTree& lazy = trees_[i];
-            std::call_once(lazy.once, [&] { lazy.tree.emplace(std::move(trees[i])); });
+            std::call_once(lazy.once,
+                           [&] { lazy.tree = std::make_unique<LGOctree>(std::move(trees[i])); });
             Count(counters_.cells,
                   static_cast<uint64_t>(lazy.tree->InternalCount() + lazy.tree->LeafCount()));
             Count(counters_.memoryBytes, lazy.tree->MemoryBytes());
