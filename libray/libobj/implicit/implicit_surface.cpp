@@ -183,7 +183,7 @@ bool StartsWith(const std::string& s, const char* prefix) {
 }  // namespace
 
 ImplicitSurface::ImplicitSurface(std::vector<FieldTerm> terms, ImplicitOptions options)
-    : terms_(std::move(terms)), options_(std::move(options)) {
+    : options_(std::move(options)), whole_(std::move(terms)) {
     static std::atomic<int> created{0};
     label_ = "Implicit object " + std::to_string(++created);
     auto reg = [this](const char* what) { return RegisterCounter(label_ + ": " + what); };
@@ -209,12 +209,12 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
     if (overrides.method) {
         const ImplicitMethod method =
             *overrides.method == ImplicitMethod::Auto
-                ? ResolveAutoMethod(terms_, options_.blendMode == BlendMode::Explicit ||
+                ? ResolveAutoMethod(Terms(), options_.blendMode == BlendMode::Explicit ||
                                                 !options_.contacts.empty())
                 : *overrides.method;
         const MethodEntry& entry = MethodEntryOf(method);
         if (entry.check) {
-            std::string error = entry.check(terms_);
+            std::string error = entry.check(Terms());
             if (!error.empty()) return label_ + ": " + error;
         }
         options_.method = method;
@@ -241,7 +241,7 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
 
 std::string ImplicitSurface::PatchName(const PrimitiveHit& hit) const {
     if (hit.part < 0 || hit.part >= static_cast<int>(termOfPart_.size())) return {};
-    return terms_[termOfPart_[hit.part]].name;
+    return Terms()[termOfPart_[hit.part]].name;
 }
 
 namespace {
@@ -384,7 +384,6 @@ void ImplicitSurface::BuildTree(int i) const {
 }
 
 void ImplicitSurface::BuildStructures() {
-    whole_ = Field(terms_);
     patches_.clear();
     contacts_.clear();
     bounds_ = Bounds3();
@@ -395,10 +394,11 @@ void ImplicitSurface::BuildStructures() {
     }
     trees_.reset();
     baseline_.reset();
-    partOfTerm_.assign(terms_.size(), -1);
+    const std::vector<FieldTerm>& terms = Terms();
+    partOfTerm_.assign(terms.size(), -1);
     termOfPart_.clear();
-    for (size_t i = 0; i < terms_.size(); ++i) {
-        if (!(terms_[i].weight > 0)) continue;
+    for (size_t i = 0; i < terms.size(); ++i) {
+        if (!(terms[i].weight > 0)) continue;
         partOfTerm_[i] = static_cast<int>(termOfPart_.size());
         termOfPart_.push_back(static_cast<int>(i));
     }
@@ -414,7 +414,7 @@ void ImplicitSurface::BuildStructures() {
     }
     if (options_.method == ImplicitMethod::Kb89) {
         // The surface lies where some positive term is positive (F = T > 0).
-        for (const FieldTerm& t : terms_) {
+        for (const FieldTerm& t : terms) {
             if (t.weight > 0) bounds_.Extend(TermSupportBounds(t));
         }
         trees_ = std::make_unique<LazyTree[]>(1);
@@ -433,7 +433,7 @@ void ImplicitSurface::BuildStructures() {
         for (const Patch& p : patches_) {
             trees.push_back(BuildPatchOctree(p, options_.threshold, PatchSettings(p)));
         }
-        contacts_ = ApplyContacts(terms_, options_.contacts, options_.propagations,
+        contacts_ = ApplyContacts(terms, options_.contacts, options_.propagations,
                                   options_.threshold, options_.octree, patches_, trees);
         for (size_t i = 0; i < trees.size(); ++i) {
             LazyTree& lazy = trees_[i];
@@ -692,7 +692,7 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
 
 void ImplicitSurface::PrepareFrame(double frameTime) {
     if (!termsAt_) return;
-    terms_ = termsAt_(frameTime);
+    whole_ = Field(termsAt_(frameTime));
     Build();
 }
 

@@ -116,7 +116,7 @@ class ImplicitSurface final : public Primitive {
     SurfaceNormals Normal(const Vec3& p, const PrimitiveHit& hit) const override;
     void PrepareFrame(double frameTime) override;
 
-    const std::vector<FieldTerm>& Terms() const { return terms_; }
+    const std::vector<FieldTerm>& Terms() const { return whole_.Terms(); }
     int PatchCount() const { return static_cast<int>(patches_.size()); }
     // What the contacts did to the patches in the current frame (contact.h; empty without
     // contacts or in kb89 mode).
@@ -177,7 +177,6 @@ class ImplicitSurface final : public Primitive {
     bool Search(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const;
     void BuildBvh(int index, int first, int count);
 
-    std::vector<FieldTerm> terms_;
     ImplicitOptions options_;
     std::string label_;
     ObjectCounters counters_;
@@ -193,7 +192,9 @@ class ImplicitSurface final : public Primitive {
     // The baseline method (march, sphere, ...) over whole_, when the method has a factory.
     std::unique_ptr<IntersectionMethod> baseline_;
     std::vector<DeformedPatch> contacts_;
-    Field whole_;                   // the plain sum (normals in single-octree mode)
+    // The plain sum (normals in single-octree mode). Its table holds the object's terms,
+    // stored once: the patches' fields share it.
+    Field whole_;
     // The automatic patch index of each term (its rank among the positive-weight terms,
     // BuildPatches' order; −1 for the others), and the term owning each patch index: the
     // parts of the baselines that report a predominant term.
