@@ -32,19 +32,36 @@ bool Patch::Predominates(const Vec3& p) const {
 
 bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {
     const FieldTerm& own = field_.Terms()[Own()];
-    const auto* point = std::get_if<PointSkeleton>(&own.skeleton);
     const double a = LengthSquared(ray.dir);
-    if (!point || !(a > 0)) return true;
-    const Vec3 oc = ray.origin - point->center;
-    const double radius =
-        own.kernel.Radius() * (1 + kSupportMargin) + kOriginMargin * Length(oc);
-    // The closest approach to the centre, at parameter tc and squared distance d2; the
-    // enlarged ball spans tc ± half. NaNs (overflow) fail both tests: true.
-    const double tc = -Dot(oc, ray.dir) / a;
-    const double d2 = LengthSquared(ray.At(tc) - point->center);
-    if (d2 > radius * radius) return false;
-    const double half = std::sqrt((radius * radius - d2) / a);
-    return !(tc + half < tMin || tc - half > tMax);
+    if (!(a > 0)) return true;
+    const double reach = own.kernel.Radius() * (1 + kSupportMargin);
+    // NaNs (overflow) fail every comparison below: true.
+    if (const auto* point = std::get_if<PointSkeleton>(&own.skeleton)) {
+        const Vec3 oc = ray.origin - point->center;
+        const double radius = reach + kOriginMargin * Length(oc);
+        // The closest approach to the centre, at parameter tc and squared distance d2; the
+        // enlarged ball spans tc ± half.
+        const double tc = -Dot(oc, ray.dir) / a;
+        const double d2 = LengthSquared(ray.At(tc) - point->center);
+        if (d2 > radius * radius) return false;
+        const double half = std::sqrt((radius * radius - d2) / a);
+        return !(tc + half < tMin || tc - half > tMax);
+    }
+    if (const auto* segment = std::get_if<SegmentSkeleton>(&own.skeleton)) {
+        // The distance between the ray's line and the segment: projected along the ray
+        // onto the plane normal to it (a linear map), the line becomes the origin and the
+        // segment the segment [qa, qb], so it is the origin's distance to [qa, qb]. An
+        // inexact s only moves the point found along [qa, qb] by a rounding error.
+        const Vec3 pa = segment->a - ray.origin, pb = segment->b - ray.origin;
+        const Vec3 qa = pa - ray.dir * (Dot(pa, ray.dir) / a);
+        const Vec3 qb = pb - ray.dir * (Dot(pb, ray.dir) / a);
+        const Vec3 e = qb - qa;
+        const double ee = LengthSquared(e);
+        const double s = ee > 0 ? std::clamp(-Dot(qa, e) / ee, 0.0, 1.0) : 0.0;
+        const double radius = reach + kOriginMargin * (Length(pa) + Length(pb));
+        return !(LengthSquared(qa + e * s) > radius * radius);
+    }
+    return true;
 }
 
 std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,

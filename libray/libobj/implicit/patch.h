@@ -51,12 +51,15 @@ class Patch {
     // False only when the ray's piece (tMin, tMax) surely misses the own term's support
     // {d < R}, where no root can be accepted (the own term is 0 there; see Box()), so the
     // patch's search may be skipped, and its tree left unbuilt. Point skeletons test the
-    // ball of radius R around the centre, enlarged by kSupportMargin for rounding; other
-    // kinds are not tested (true: their support box, Box(), is the test the caller makes).
+    // ball of radius R around the centre (its span along the ray too), segments the
+    // capsule (the distance from the ray's line to the segment), both enlarged for
+    // rounding; other kinds are not tested (true: their support box, Box(), is the test
+    // the caller makes).
     bool MayHoldRoot(const Ray& ray, double tMin, double tMax) const;
-    // The ball's enlargement: relative 1e-6 of R plus 1e-9 of the ray origin's distance to
-    // the centre. The closest approach and the accepted points o + t·d are computed with
-    // errors of a few ulps of those lengths (~1e-15 relative), far inside it.
+    // The enlargement: relative 1e-6 of R plus 1e-9 of the distances from the ray origin
+    // to the skeleton's points (centre, or both ends). The closest approaches and the
+    // accepted points o + t·d are computed with errors of a few ulps of those lengths
+    // (~1e-15 relative), far inside it.
     static constexpr double kSupportMargin = 1e-6, kOriginMargin = 1e-9;
     // Adds a deformation term to the patch field (contact.h); predominance, members and box
     // are unchanged.

@@ -101,37 +101,54 @@ TEST(Patch, AutomaticNeighboursMatchAllPairsOnRandomTerms) {
 }
 
 // MayHoldRoot is false only for ray pieces where the own term is 0 at every sampled point
-// (so no root can be accepted there), and it passes most pieces that enter the ball.
+// (so no root can be accepted there), and it passes most pieces that enter the support;
+// for a point's ball and a segment's capsule.
 TEST(Patch, MayHoldRootFalseOnlyWhereTheOwnTermVanishes) {
-    Rng rng(3);
-    std::vector<FieldTerm> terms{Point("a", {0.2, -0.1, 0.3}), Point("b", {1, 0, 0})};
-    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
-    const Patch& patch = patches[0];
-    int skipped = 0, entering = 0;
-    for (int i = 0; i < 20000; ++i) {
-        Ray ray{testing::RandomPoint(rng, -4, 4),
-                testing::RandomUnit(rng) * testing::Uniform(rng, 0.1, 3)};
-        const double tMin = testing::Uniform(rng, -2, 2), tMax = tMin + testing::Uniform(rng, 0, 6);
-        bool ownSomewhere = false;
-        for (int k = 0; k <= 2000 && !ownSomewhere; ++k) {
-            const Vec3 p = ray.At(tMin + (tMax - tMin) * k / 2000);
-            ownSomewhere = patch.GetField().TermValue(patch.Own(), p) > 0;
+    const Kernel kernel = Kernel::GascuelQuadratic(0.5, 2, 1.5);
+    for (const Skeleton& own : {Skeleton{PointSkeleton{{0.2, -0.1, 0.3}}},
+                                Skeleton{SegmentSkeleton{{-0.7, 0.4, 0.1}, {0.9, -0.2, 0.6}}}}) {
+        Rng rng(3);
+        std::vector<FieldTerm> terms{{"a", own, kernel, 1}, Point("b", {1, 0, 0})};
+        std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
+        const Patch& patch = patches[0];
+        int skipped = 0, entering = 0;
+        for (int i = 0; i < 20000; ++i) {
+            Ray ray{testing::RandomPoint(rng, -4, 4),
+                    testing::RandomUnit(rng) * testing::Uniform(rng, 0.1, 3)};
+            const double tMin = testing::Uniform(rng, -2, 2);
+            const double tMax = tMin + testing::Uniform(rng, 0, 6);
+            bool ownSomewhere = false;
+            for (int k = 0; k <= 2000 && !ownSomewhere; ++k) {
+                const Vec3 p = ray.At(tMin + (tMax - tMin) * k / 2000);
+                ownSomewhere = patch.GetField().TermValue(patch.Own(), p) > 0;
+            }
+            if (!patch.MayHoldRoot(ray, tMin, tMax)) {
+                ++skipped;
+                ASSERT_FALSE(ownSomewhere) << "ray " << i;
+            } else if (ownSomewhere) {
+                ++entering;
+            }
         }
-        if (!patch.MayHoldRoot(ray, tMin, tMax)) {
-            ++skipped;
-            ASSERT_FALSE(ownSomewhere) << "ray " << i;
-        } else if (ownSomewhere) {
-            ++entering;
-        }
+        EXPECT_GT(skipped, 3000);
+        EXPECT_GT(entering, 1000);
     }
-    EXPECT_GT(skipped, 5000);
-    EXPECT_GT(entering, 1000);
-    // Grazing: rays passing the ball's surface at R(1 ± 1e-3) on either side.
-    const double radius = terms[0].kernel.Radius();
+    // Grazing a point's ball: rays passing its surface at R(1 ± 1e-3) on either side.
+    const Vec3 c{0.2, -0.1, 0.3};
+    std::vector<Patch> patches = BuildPatches(Field({Point("a", c)}), BlendMode::Automatic);
+    const double radius = Point("a", c).kernel.Radius();
     for (double f : {1 - 1e-3, 1 + 1e-3}) {
-        Ray ray{Vec3{0.2, -0.1, 0.3} + Vec3{-5, radius * f, 0}, {1, 0, 0}};
-        EXPECT_EQ(patch.MayHoldRoot(ray, 0, 10), f < 1) << f;
-        EXPECT_FALSE(patch.MayHoldRoot(ray, 6, 10));  // the chord lies near t = 5
+        Ray ray{c + Vec3{-5, radius * f, 0}, {1, 0, 0}};
+        EXPECT_EQ(patches[0].MayHoldRoot(ray, 0, 10), f < 1) << f;
+        EXPECT_FALSE(patches[0].MayHoldRoot(ray, 6, 10));  // the chord lies near t = 5
+    }
+    // Grazing a segment's capsule from the side, parallel and crossing its axis.
+    std::vector<Patch> capsule = BuildPatches(
+        Field({{"s", SegmentSkeleton{{0, 0, 0}, {2, 0, 0}}, Point("x", c).kernel, 1}}),
+        BlendMode::Automatic);
+    for (double f : {1 - 1e-3, 1 + 1e-3}) {
+        Ray along{{-5, radius * f, 0}, {1, 0, 0}}, across{{1, -5, radius * f}, {0, 1, 0}};
+        EXPECT_EQ(capsule[0].MayHoldRoot(along, 0, 20), f < 1) << f;
+        EXPECT_EQ(capsule[0].MayHoldRoot(across, 0, 20), f < 1) << f;
     }
 }
 
