@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <ranges>
+#include <numeric>
 
 #include "libcommon/stats.h"
 
@@ -23,13 +23,25 @@ Bounds3 TermSupportBounds(const FieldTerm& term) {
     return SkeletonBounds(term.skeleton).Padded(term.kernel.Radius());
 }
 
-Field::Field(std::vector<FieldTerm> terms) : terms_(std::move(terms)) {
-    support_.reserve(terms_.size());
-    for (const FieldTerm& t : terms_) support_.push_back(TermSupportBounds(t));
+Field::Field(std::vector<FieldTerm> terms) {
+    auto table = std::make_shared<TermTable>();
+    table->support.reserve(terms.size());
+    for (const FieldTerm& t : terms) table->support.push_back(TermSupportBounds(t));
+    table->terms = std::move(terms);
+    rows_.resize(table->terms.size());
+    std::iota(rows_.begin(), rows_.end(), 0);
+    table_ = std::move(table);
+}
+
+Field Field::Subset(std::vector<int> rows) const {
+    Field out;
+    out.table_ = table_;
+    out.rows_ = std::move(rows);
+    return out;
 }
 
 double Field::TermValue(int i, const Vec3& p) const {
-    const FieldTerm& t = terms_[i];
+    const FieldTerm& t = table_->terms[i];
     return t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
 }
 
@@ -37,11 +49,12 @@ template <bool kValue, bool kGradient, class Indices>
 void Field::Sum(const Vec3& p, const Indices& indices, double* value, Vec3* gradient) const {
     if constexpr (kValue) Count(FieldCounterIds().values);
     if constexpr (kGradient) Count(FieldCounterIds().gradients);
+    const TermTable& table = *table_;
     double sum = 0;
     Vec3 g;
     for (const int i : indices) {
-        if (!MayReach(i, p)) continue;  // the term and its gradient are exactly 0
-        const FieldTerm& t = terms_[i];
+        if (!MayReach(table.support[i], p)) continue;  // the term and its gradient are exactly 0
+        const FieldTerm& t = table.terms[i];
         // Points, the commonest skeleton, without the variant dispatch (same arithmetic).
         const auto* point = std::get_if<PointSkeleton>(&t.skeleton);
         Vec3 closest;
@@ -60,7 +73,7 @@ void Field::Sum(const Vec3& p, const Indices& indices, double* value, Vec3* grad
 
 double Field::Value(const Vec3& p) const {
     double value;
-    Sum<true, false>(p, std::views::iota(0, Size()), &value, nullptr);
+    Sum<true, false>(p, rows_, &value, nullptr);
     return value;
 }
 
@@ -72,7 +85,7 @@ double Field::Value(const Vec3& p, std::span<const int32_t> terms) const {
 
 Vec3 Field::Gradient(const Vec3& p) const {
     Vec3 gradient;
-    Sum<false, true>(p, std::views::iota(0, Size()), nullptr, &gradient);
+    Sum<false, true>(p, rows_, nullptr, &gradient);
     return gradient;
 }
 
@@ -89,30 +102,37 @@ double Field::ValueAndGradient(const Vec3& p, std::span<const int32_t> terms,
     return value;
 }
 
-void Field::ActiveTerms(const Bounds3& box, std::vector<int32_t>& out) const {
-    const int n = Size();
-    for (int i = 0; i < n; ++i) {
-        if (!MayReach(i, box)) continue;
-        const FieldTerm& t = terms_[i];
+void Field::TermsMeeting(const Bounds3& box, std::span<const int32_t> terms,
+                         std::vector<int32_t>& out) const {
+    const TermTable& table = *table_;
+    for (const int i : terms) {
+        if (MayReach(table.support[i], box)) out.push_back(i);
+    }
+}
+
+void Field::ActiveTerms(const Bounds3& box, std::span<const int32_t> terms,
+                        std::vector<int32_t>& out) const {
+    const TermTable& table = *table_;
+    for (const int i : terms) {
+        if (!MayReach(table.support[i], box)) continue;
+        const FieldTerm& t = table.terms[i];
         if (SkeletonDistanceRange(t.skeleton, box).min < t.kernel.Radius()) out.push_back(i);
     }
 }
 
-FieldBound Field::Bound(const Bounds3& box) const { return BoundImpl(box, nullptr); }
+FieldBound Field::Bound(const Bounds3& box) const { return Bound(box, rows_, nullptr); }
 
-FieldBound Field::Bound(const Bounds3& box, std::vector<TermValueRange>& termRanges) const {
-    termRanges.assign(terms_.size(), TermValueRange{});
-    return BoundImpl(box, &termRanges);
-}
-
-FieldBound Field::BoundImpl(const Bounds3& box, std::vector<TermValueRange>* termRanges) const {
+FieldBound Field::Bound(const Bounds3& box, std::span<const int32_t> terms,
+                        std::vector<TermValueRange>* termRanges) const {
     Count(FieldCounterIds().bounds);
+    if (termRanges) termRanges->assign(terms.size(), TermValueRange{});
+    const TermTable& table = *table_;
     FieldBound fb;
     fb.minDistance = std::numeric_limits<double>::infinity();
-    const int n = Size();
-    for (int i = 0; i < n; ++i) {
-        if (!MayReach(i, box)) continue;
-        const FieldTerm& t = terms_[i];
+    for (size_t k = 0; k < terms.size(); ++k) {
+        const int i = terms[k];
+        if (!MayReach(table.support[i], box)) continue;
+        const FieldTerm& t = table.terms[i];
         DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
         if (r.min >= t.kernel.Radius()) continue;  // f = f' = f'' = 0 on the whole box
         KernelBounds kb = t.kernel.Bounds(r.min, r.max);
@@ -120,7 +140,7 @@ FieldBound Field::BoundImpl(const Bounds3& box, std::vector<TermValueRange>* ter
         double lo = t.weight * (t.weight >= 0 ? kb.valueMin : kb.valueMax);
         double hi = t.weight * (t.weight >= 0 ? kb.valueMax : kb.valueMin);
         // TermRange's numbers: w·f at the two ends of the distance range, ordered.
-        if (termRanges) (*termRanges)[i] = {std::min(lo, hi), std::max(lo, hi)};
+        if (termRanges) (*termRanges)[k] = {std::min(lo, hi), std::max(lo, hi)};
         fb.valueMin += lo;
         fb.valueMax += hi;
         fb.L += w * kb.maxSlope;
@@ -143,8 +163,8 @@ FieldBound Field::BoundImpl(const Bounds3& box, std::vector<TermValueRange>* ter
 }
 
 void Field::TermRange(int i, const Bounds3& box, double& lo, double& hi) const {
-    const FieldTerm& t = terms_[i];
-    if (!MayReach(i, box)) {
+    const FieldTerm& t = table_->terms[i];
+    if (!MayReach(table_->support[i], box)) {
         lo = hi = 0;
         return;
     }
@@ -156,7 +176,7 @@ void Field::TermRange(int i, const Bounds3& box, double& lo, double& hi) const {
 
 Bounds3 Field::SupportBounds() const {
     Bounds3 b;
-    for (const FieldTerm& t : terms_) b.Extend(TermSupportBounds(t));
+    for (const int i : rows_) b.Extend(table_->support[i]);
     return b;
 }
 

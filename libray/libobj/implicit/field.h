@@ -64,74 +64,102 @@ class FieldDeformation {
     virtual FieldBound Bound(const Bounds3& box) const = 0;
 };
 
+// A field sums some rows of a term table. The table (the terms and their support boxes) is
+// shared, not copied, by every copy of the field and every field made from it by Subset, so
+// a patch's field costs its row list, not copies of its neighbours' terms. Term indices in
+// this interface (TermValue, TermRange, the term lists of the sums, ActiveTerms) are rows of
+// the table, i.e. indices into Terms(); a field made from a vector of terms sums all of
+// them, in order, so there rows and positions coincide.
 class Field {
   public:
-    Field() = default;
+    Field() : Field(std::vector<FieldTerm>{}) {}
     explicit Field(std::vector<FieldTerm> terms);
+    // The field of rows `rows` of this field's table (summed in that order, no repeats),
+    // sharing the table; without a deformation.
+    Field Subset(std::vector<int> rows) const;
 
-    const std::vector<FieldTerm>& Terms() const { return terms_; }
+    // Every term of the table, indexed by row (a Subset's table holds non-members too).
+    const std::vector<FieldTerm>& Terms() const { return table_->terms; }
+    // The rows this field sums, in summation order.
+    const std::vector<int>& Rows() const { return rows_; }
     // Adds (or, with nullptr, removes) the deformation term.
     void SetDeformation(std::shared_ptr<const FieldDeformation> deformation) {
         deformation_ = std::move(deformation);
     }
     const FieldDeformation* Deformation() const { return deformation_.get(); }
-    int Size() const { return static_cast<int>(terms_.size()); }
+    // The number of terms the field sums.
+    int Size() const { return static_cast<int>(rows_.size()); }
 
-    // w_i f_i(d_i(p)).
+    // w_i f_i(d_i(p)) for row i.
     double TermValue(int i, const Vec3& p) const;
     double Value(const Vec3& p) const;
     // Analytic gradient Σ w_i f_i'(d_i) (p − c_i)/d_i, with c_i the closest skeleton point;
     // terms at d_i = 0 contribute 0 (their gradient is 0 for the quadratic and blob kernels
     // and undefined for the linear one).
     Vec3 Gradient(const Vec3& p) const;
-    // Value and Gradient summing only the listed terms (indices in increasing order), for a
-    // list from ActiveTerms(box) with p in that box: the other terms are exactly 0 there, so
-    // the sums add the same numbers in the same order and the results are bit-identical to
-    // Value(p) and Gradient(p), at the cost of the listed terms only.
+    // Value and Gradient summing only the listed rows, for a list that keeps Rows()' order
+    // and holds every row whose support may reach p (e.g. from ActiveTerms or TermsMeeting
+    // of a box containing p): the other terms are exactly 0 there, so the sums add the same
+    // numbers in the same order and the results are bit-identical to Value(p) and
+    // Gradient(p), at the cost of the listed terms only.
     double Value(const Vec3& p, std::span<const int32_t> terms) const;
     Vec3 Gradient(const Vec3& p, std::span<const int32_t> terms) const;
     // Both at once (counted as one value and one gradient evaluation), sharing each term's
     // distance; bit-identical to the two separate calls.
     double ValueAndGradient(const Vec3& p, std::span<const int32_t> terms, Vec3& gradient) const;
-    // Appends to `out`, in increasing order, every term whose support may meet the box (its
-    // support box meets it and its distance range starts below R): every other term and its
-    // gradient are exactly 0 at every point of the box.
-    void ActiveTerms(const Bounds3& box, std::vector<int32_t>& out) const;
+    // Appends to `out`, in the order of `terms`, every listed row whose support box meets
+    // the (closed) box. Monotone: for a box inside `box`, the rows of this list are a
+    // superset of every row meeting it, so a list made for a cell serves all its sub-cells
+    // and points (as `terms` of the sums, Bound and ActiveTerms).
+    void TermsMeeting(const Bounds3& box, std::span<const int32_t> terms,
+                      std::vector<int32_t>& out) const;
+    // Appends to `out`, in the order of `terms`, every listed row whose support may meet
+    // the box (its support box meets it and its distance range starts below R): every
+    // other term and its gradient are exactly 0 at every point of the box. `terms` must
+    // hold every row of the field that meets the box (Rows() or a TermsMeeting list).
+    void ActiveTerms(const Bounds3& box, std::span<const int32_t> terms,
+                     std::vector<int32_t>& out) const;
     FieldBound Bound(const Bounds3& box) const;
-    // Bound, also storing in termRanges[i] the range [lo, hi] TermRange gives for term i
-    // (the same numbers, computed once for both; termRanges is resized to Size()).
-    FieldBound Bound(const Bounds3& box, std::vector<TermValueRange>& termRanges) const;
-    // [lo, hi] containing w_i f_i(d_i(p)) for every p in the box (f is monotone in d).
+    // Bound, from the listed rows only, which must hold every row of the field meeting the
+    // box (Rows() or a TermsMeeting list: the others add nothing, so the result is
+    // bit-identical to Bound(box)). With termRanges, also stores in (*termRanges)[k] the
+    // range [lo, hi] TermRange gives for row terms[k] (the same numbers, computed once for
+    // both; termRanges is resized to terms.size()).
+    FieldBound Bound(const Bounds3& box, std::span<const int32_t> terms,
+                     std::vector<TermValueRange>* termRanges) const;
+    // [lo, hi] containing w_i f_i(d_i(p)) for every p in the box (f is monotone in d), row i.
     void TermRange(int i, const Bounds3& box, double& lo, double& hi) const;
 
-    // The box outside of which every term vanishes (skeleton boxes padded by R).
+    // The box outside of which every term of the field vanishes (skeleton boxes padded by R).
     Bounds3 SupportBounds() const;
 
   private:
-    // The sums of F (into *value) and ∇F (into *gradient) over the term indices `indices`
-    // yields, as selected; one loop, so ValueAndGradient shares each term's distance.
+    struct TermTable {
+        std::vector<FieldTerm> terms;
+        std::vector<Bounds3> support;  // TermSupportBounds of each term
+    };
+
+    // The sums of F (into *value) and ∇F (into *gradient) over the rows `indices` yields,
+    // as selected; one loop, so ValueAndGradient shares each term's distance.
     template <bool kValue, bool kGradient, class Indices>
     void Sum(const Vec3& p, const Indices& indices, double* value, Vec3* gradient) const;
-    FieldBound BoundImpl(const Bounds3& box, std::vector<TermValueRange>* termRanges) const;
 
-    // Whether p may lie in the support of term i: false only where d_i(p) >= R_i, so the
+    // Whether p may lie in the support of row i: false only where d_i(p) >= R_i, so the
     // term and its derivatives are exactly 0 there and the sums may skip it (a box test
     // instead of a distance).
-    bool MayReach(int i, const Vec3& p) const {
-        const Bounds3& b = support_[i];
+    static bool MayReach(const Bounds3& b, const Vec3& p) {
         return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y &&
                p.z >= b.lo.z && p.z <= b.hi.z;
     }
     // Likewise for a box: false only where the box misses the term's support box, so every
     // point of it is at distance >= R_i (and the distance range's lower end too).
-    bool MayReach(int i, const Bounds3& box) const {
-        const Bounds3& b = support_[i];
+    static bool MayReach(const Bounds3& b, const Bounds3& box) {
         return box.lo.x <= b.hi.x && box.hi.x >= b.lo.x && box.lo.y <= b.hi.y &&
                box.hi.y >= b.lo.y && box.lo.z <= b.hi.z && box.hi.z >= b.lo.z;
     }
 
-    std::vector<FieldTerm> terms_;
-    std::vector<Bounds3> support_;  // TermSupportBounds of each term
+    std::shared_ptr<const TermTable> table_;
+    std::vector<int> rows_;
     std::shared_ptr<const FieldDeformation> deformation_;
 };
 

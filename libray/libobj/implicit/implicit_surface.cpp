@@ -273,13 +273,12 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
     if (overrides.method) {
         const ImplicitMethod method =
             *overrides.method == ImplicitMethod::Auto
-                ? ResolveAutoMethod(whole_.Terms(),
-                                    options_.blendMode == BlendMode::Explicit ||
-                                        !options_.contacts.empty())
+                ? ResolveAutoMethod(Terms(), options_.blendMode == BlendMode::Explicit ||
+                                                !options_.contacts.empty())
                 : *overrides.method;
         const MethodEntry& entry = MethodEntryOf(method);
         if (entry.check) {
-            std::string error = entry.check(whole_.Terms());
+            std::string error = entry.check(Terms());
             if (!error.empty()) return label_ + ": " + error;
         }
         options_.method = method;
@@ -306,7 +305,7 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
 
 std::string ImplicitSurface::PatchName(const PrimitiveHit& hit) const {
     if (hit.part < 0 || hit.part >= static_cast<int>(termOfPart_.size())) return {};
-    return whole_.Terms()[termOfPart_[hit.part]].name;
+    return Terms()[termOfPart_[hit.part]].name;
 }
 
 namespace {
@@ -362,7 +361,7 @@ double LoneThickness(const FieldTerm& term, double threshold) {
 // the maximum depth is at least minDepth + 3. A lone point with the blob kernel of the
 // benchmark (R = 1, T = 0.6: τ = 0.47, edge 2) gets 3, Gascuel's setting.
 int ImplicitSurface::AutoMinDepth(const Patch& patch, double threshold) {
-    const double tau = LoneThickness(patch.GetField().Terms().front(), threshold);
+    const double tau = LoneThickness(patch.GetField().Terms()[patch.Own()], threshold);
     const Vec3 extent = patch.Box().Extent();
     const double edge = std::max({extent.x, extent.y, extent.z});
     if (!(tau > 0) || !(edge > tau)) return 2;
@@ -417,9 +416,10 @@ void ImplicitSurface::BuildTree(int i) const {
     for (size_t k = 0; k < sources.size(); ++k) before[k] = ThreadCount(sources[k].first);
     const auto start = std::chrono::steady_clock::now();
     if (options_.method == ImplicitMethod::Kb89) {
-        trees_[i].tree.emplace(whole_, options_.threshold, bounds_, options_.octree);
+        trees_[i].tree =
+            std::make_unique<LGOctree>(whole_, options_.threshold, bounds_, options_.octree);
     } else {
-        trees_[i].tree.emplace(
+        trees_[i].tree = std::make_unique<LGOctree>(
             BuildPatchOctree(patches_[i], options_.threshold, PatchSettings(patches_[i])));
     }
     const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
@@ -448,7 +448,6 @@ void ImplicitSurface::BuildTree(int i) const {
 }
 
 void ImplicitSurface::BuildStructures() {
-    const std::vector<FieldTerm>& terms = whole_.Terms();
     patches_.clear();
     contacts_.clear();
     bounds_ = Bounds3();
@@ -459,6 +458,7 @@ void ImplicitSurface::BuildStructures() {
     }
     trees_.reset();
     baseline_.reset();
+    const std::vector<FieldTerm>& terms = Terms();
     partOfTerm_.assign(terms.size(), -1);
     termOfPart_.clear();
     for (size_t i = 0; i < terms.size(); ++i) {
@@ -486,7 +486,7 @@ void ImplicitSurface::BuildStructures() {
     }
     std::vector<std::pair<int, int>> separate;
     for (const ContactPair& c : options_.contacts) separate.emplace_back(c.a, c.b);
-    patches_ = BuildPatches(terms, options_.blendMode, options_.blendPairs, separate);
+    patches_ = BuildPatches(whole_, options_.blendMode, options_.blendPairs, separate);
     trees_ = std::make_unique<LazyTree[]>(patches_.size());
     for (const Patch& p : patches_) bounds_.Extend(p.Box());
     if (!options_.contacts.empty()) {
@@ -501,7 +501,8 @@ void ImplicitSurface::BuildStructures() {
                                   options_.threshold, options_.octree, patches_, trees);
         for (size_t i = 0; i < trees.size(); ++i) {
             LazyTree& lazy = trees_[i];
-            std::call_once(lazy.once, [&] { lazy.tree.emplace(std::move(trees[i])); });
+            std::call_once(lazy.once,
+                           [&] { lazy.tree = std::make_unique<LGOctree>(std::move(trees[i])); });
             Count(counters_.cells,
                   static_cast<uint64_t>(lazy.tree->InternalCount() + lazy.tree->LeafCount()));
             Count(counters_.memoryBytes, lazy.tree->MemoryBytes());
@@ -881,6 +882,9 @@ bool ImplicitSurface::Search(const Ray& ray, double tMin, double tMax, Primitive
         if (node.count > 0) {
             for (int i = node.first; i < node.first + node.count; ++i) {
                 int patch = bvhOrder_[i];
+                // A ray missing the own term's support meets no acceptable root: skip the
+                // patch before its tree is built (the result is the same).
+                if (!patches_[patch].MayHoldRoot(ray, tMin, best)) continue;
                 std::optional<double> t =
                     PatchFirstRoot(patches_[patch], Tree(patch), ray, tMin, best);
                 if (t) {
@@ -919,7 +923,7 @@ SurfaceNormals ImplicitSurface::Normal(const Vec3& p, const PrimitiveHit& hit) c
                                                 : field.Gradient(p)));
     if (LengthSquared(n) == 0) {
         // Zero gradient: point away from the dominant (or own) skeleton.
-        int own = 0;
+        int own = usePatch ? patches_[hit.part].Own() : 0;
         if (!usePatch) {
             for (int i = 1; i < field.Size(); ++i) {
                 if (field.TermValue(i, p) > field.TermValue(own, p)) own = i;

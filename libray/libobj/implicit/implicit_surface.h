@@ -157,10 +157,11 @@ class ImplicitSurface final : public Primitive {
 
     // A tree built on first use: patch trees are built by the first ray that reaches the
     // patch (on whichever render thread), the rest never. The tree depends only on the
-    // patch, so images do not depend on which thread builds it.
+    // patch, so images do not depend on which thread builds it. Held by pointer, so a patch
+    // no ray reaches costs 16 bytes here instead of an empty LGOctree's 432.
     struct LazyTree {
         std::once_flag once;
-        std::optional<LGOctree> tree;
+        std::unique_ptr<LGOctree> tree;
     };
 
     void Build();
@@ -191,7 +192,8 @@ class ImplicitSurface final : public Primitive {
     // The baseline method (march, sphere, ...) over whole_, when the method has a factory.
     std::unique_ptr<IntersectionMethod> baseline_;
     std::vector<DeformedPatch> contacts_;
-    // The plain sum of the terms (normals in single-octree mode); its terms are the object's.
+    // The plain sum (normals in single-octree mode). Its table holds the object's terms,
+    // stored once: the patches' fields share it.
     Field whole_;
     // The automatic patch index of each term (its rank among the positive-weight terms,
     // BuildPatches' order; −1 for the others), and the term owning each patch index: the

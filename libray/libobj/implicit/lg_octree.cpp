@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <limits>
 
 #include "libcommon/error.h"
 #include "libcommon/stats.h"
@@ -125,7 +127,7 @@ class RaySearch {
     }
 
     bool Ridders(double a, double ga, double b, double gb) {
-        if (tree_.OwnExcluded(Bounds3(ray_.At(a), ray_.At(b)))) {
+        if (tree_.OwnExcluded(Bounds3(ray_.At(a), ray_.At(b)), terms_)) {
             Count(Counters().excludedSegments);
             return false;
         }
@@ -353,22 +355,31 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     // exactly the nodes built (no spare capacity).
     const Vec3 extent = box_.Extent();
     leafPadding_ = kLeafBoxPadding * std::max({extent.x, extent.y, extent.z});
-    thread_local std::vector<Internal> internalScratch;
-    thread_local std::vector<Leaf> leafScratch;
+    thread_local std::vector<Ref> nodeScratch;
+    thread_local std::vector<BuildLeaf> leafScratch;
     thread_local std::vector<int32_t> termScratch;
-    internalScratch.clear();
+    nodeScratch.clear();
     leafScratch.clear();
     LeafLists().Clear();
     termScratch.clear();
-    internals_.swap(internalScratch);
-    leaves_.swap(leafScratch);
+    thread_local std::vector<std::vector<int32_t>> cellTermScratch;
+    if (cellTermScratch.size() < static_cast<size_t>(settings_.maxDepth) + 1) {
+        cellTermScratch.resize(static_cast<size_t>(settings_.maxDepth) + 1);
+    }
+    nodes_.swap(nodeScratch);
+    buildLeaves_.swap(leafScratch);
     terms_.swap(termScratch);
-    root_ = Build(box_, 0, {0, 0, 0});
-    internals_.swap(internalScratch);
-    leaves_.swap(leafScratch);
+    cellTerms_.swap(cellTermScratch);
+    root_ = Build(box_, 0, {0, 0, 0}, field_.Rows());
+    nodes_.swap(nodeScratch);
+    buildLeaves_.swap(leafScratch);
     terms_.swap(termScratch);
-    internals_.assign(internalScratch.begin(), internalScratch.end());
-    leaves_.assign(leafScratch.begin(), leafScratch.end());
+    cellTerms_.swap(cellTermScratch);
+    nodes_.assign(nodeScratch.begin(), nodeScratch.end());
+    leaves_.reserve(leafScratch.size());
+    for (const BuildLeaf& leaf : leafScratch) {
+        leaves_.push_back({UpperFloat(leaf.L), UpperFloat(leaf.G), leaf.firstTerm, leaf.termCount});
+    }
     terms_.assign(termScratch.begin(), termScratch.end());
     std::vector<TermValueRange>().swap(termRanges_);
     ExtendLeafBox(root_, box_);
@@ -381,28 +392,40 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
     }
 }
 
+// During the build the leaves are in buildLeaves_, afterwards in leaves_ (one of the two is
+// empty); either way each costs a final Leaf.
 std::size_t LGOctree::MemoryBytes() const {
-    return internals_.size() * sizeof(Internal) + leaves_.size() * sizeof(Leaf) +
-           terms_.size() * sizeof(int32_t);
+    return nodes_.size() * sizeof(Ref) +
+           (leaves_.size() + buildLeaves_.size()) * sizeof(Leaf) + terms_.size() * sizeof(int32_t);
+}
+
+float UpperFloat(double x) {
+    if (!(x <= std::numeric_limits<float>::max())) return std::numeric_limits<float>::infinity();
+    const float f = static_cast<float>(x);  // the nearest float, possibly below x
+    return f < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
 // False when some other term's smallest value over the box exceeds the own term's largest
-// (strictly, so even a tie won by the lower index is impossible).
-// `ranges` holds every term's value range over the box (Field::Bound).
-bool LGOctree::OwnMayPredominate(const std::vector<TermValueRange>& ranges) const {
-    const double ownHi = ranges[ownTerm_].hi;
-    for (int j = 0; j < field_.Size(); ++j) {
-        if (j != ownTerm_ && ranges[j].lo > ownHi) return false;
+// (strictly, so even a tie won by the lower index is impossible). Rows missing from `terms`
+// are 0 over the box; so is the own term when missing (then any positive term excludes).
+bool LGOctree::OwnMayPredominate(std::span<const int32_t> terms,
+                                 const std::vector<TermValueRange>& ranges) const {
+    double ownHi = 0;
+    for (size_t k = 0; k < terms.size(); ++k) {
+        if (terms[k] == ownTerm_) ownHi = ranges[k].hi;
+    }
+    for (size_t k = 0; k < terms.size(); ++k) {
+        if (terms[k] != ownTerm_ && ranges[k].lo > ownHi) return false;
     }
     return true;
 }
 
-bool LGOctree::OwnExcluded(const Bounds3& box) const {
+bool LGOctree::OwnExcluded(const Bounds3& box, std::span<const int32_t> terms) const {
     if (ownTerm_ < 0 || !settings_.usePredominancePruning) return false;
     double ownLo, ownHi;
     field_.TermRange(ownTerm_, box, ownLo, ownHi);
     const double limit = ownHi + kExclusionMargin * std::abs(ownHi);
-    for (int j = 0; j < field_.Size(); ++j) {
+    for (const int j : terms) {
         if (j == ownTerm_) continue;
         double lo, hi;
         field_.TermRange(j, box, lo, hi);
@@ -411,9 +434,34 @@ bool LGOctree::OwnExcluded(const Bounds3& box) const {
     return false;
 }
 
-LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G) {
+LGOctree::Ref LGOctree::ChildRef(Ref node, int child) const {
+    const uint32_t classes = static_cast<uint32_t>(nodes_[node]);
+    if (!((classes >> child) & 1)) return (classes >> (8 + child)) & 1 ? kFullRef : kEmptyRef;
+    return nodes_[node + 1 + std::popcount(classes & ((1u << child) - 1))];
+}
+
+LGOctree::Ref LGOctree::PushInternal(const Ref (&children)[8]) {
+    const Ref self = static_cast<Ref>(nodes_.size());
+    uint32_t classes = 0;
+    for (int i = 0; i < 8; ++i) {
+        if (children[i] >= 0 || children[i] <= kFirstLeafRef) {
+            classes |= 1u << i;
+        } else if (children[i] == kFullRef) {
+            classes |= 1u << (8 + i);
+        }
+    }
+    nodes_.push_back(static_cast<Ref>(classes));
+    for (const Ref r : children) {
+        if (r >= 0 || r <= kFirstLeafRef) nodes_.push_back(r);
+    }
+    ++internalCount_;
+    return self;
+}
+
+LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G,
+                                 std::span<const int32_t> terms) {
     std::size_t first = terms_.size();
-    field_.ActiveTerms(box.Padded(leafPadding_), terms_);
+    field_.ActiveTerms(box.Padded(leafPadding_), terms, terms_);
     const std::size_t count = terms_.size() - first;
     // Share an equal list made before: look it up by a hash of the list in a small
     // direct-mapped cache of recent lists. An entry may be stale (its range truncated by a
@@ -431,31 +479,37 @@ LGOctree::Ref LGOctree::MakeLeaf(const Bounds3& box, double L, double G) {
     } else {
         cached = {static_cast<uint32_t>(first), static_cast<uint32_t>(count)};
     }
-    leaves_.push_back({L, G, static_cast<uint32_t>(first), static_cast<uint32_t>(count)});
-    return kFirstLeafRef - static_cast<Ref>(leaves_.size() - 1);
+    buildLeaves_.push_back({L, G, static_cast<uint32_t>(first), static_cast<uint32_t>(count)});
+    return kFirstLeafRef - static_cast<Ref>(buildLeaves_.size() - 1);
 }
 
 void LGOctree::ExtendLeafBox(Ref ref, const Bounds3& box) {
     if (ref <= kFirstLeafRef) {
         leafBox_.Extend(box);
     } else if (ref >= 0) {
-        for (int i = 0; i < 8; ++i) ExtendLeafBox(internals_[ref].child[i], ChildBox(box, i));
+        for (int i = 0; i < 8; ++i) ExtendLeafBox(ChildRef(ref, i), ChildBox(box, i));
     }
 }
 
-double LGOctree::LatticeValue(const Vec3& p, LatticePoint q) {
+double LGOctree::LatticeValue(const Vec3& p, LatticePoint q, std::span<const int32_t> terms) {
     const uint64_t key = (uint64_t{q.x} << 42) | (uint64_t{q.y} << 21) | uint64_t{q.z};
     double* slot = LatticeTable().Find(key);
-    if (!slot) slot = LatticeTable().Insert(key, field_.Value(p));
+    if (!slot) slot = LatticeTable().Insert(key, field_.Value(p, terms));
     return *slot;
 }
 
-LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
+LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
+                              std::span<const int32_t> parentTerms) {
     const OctreeCounters& c = Counters();
     Count(c.cellsBuilt);
     const OctreeSettings& s = settings_;
+    // This cell's rows, in a per-depth slot of cellTerms_ (children fill deeper slots, so
+    // the list stays valid until this call returns; the slots exist before the build).
+    std::vector<int32_t>& terms = cellTerms_[depth];
+    terms.clear();
+    field_.TermsMeeting(box.Padded(leafPadding_), parentTerms, terms);
     const bool predominance = s.usePredominancePruning && ownTerm_ >= 0;
-    FieldBound fb = predominance ? field_.Bound(box, termRanges_) : field_.Bound(box);
+    FieldBound fb = field_.Bound(box, terms, predominance ? &termRanges_ : nullptr);
     if (s.useValueRange) {
         if (fb.valueMin > threshold_) {
             Count(c.rangeFired);
@@ -466,7 +520,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
             return kEmptyRef;
         }
     }
-    if (predominance && !OwnMayPredominate(termRanges_)) {
+    if (predominance && !OwnMayPredominate(terms, termRanges_)) {
         Count(c.patchFired);
         return kEmptyRef;
     }
@@ -474,7 +528,8 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     double b = HalfDiagonal(box);
     // The cell's edge in lattice steps (>= 2 down to maxDepth), and its centre's point.
     const uint32_t edge = 1u << (s.maxDepth + 1 - depth), half = edge / 2;
-    double gc = LatticeValue(centre, {low.x + half, low.y + half, low.z + half}) - threshold_;
+    double gc =
+        LatticeValue(centre, {low.x + half, low.y + half, low.z + half}, terms) - threshold_;
     Ref mark = gc > 0 ? kFullRef : kEmptyRef;
     if (s.useHeuristic1 && std::abs(gc) > b * fb.L) {
         Count(c.h1Fired);
@@ -483,7 +538,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     // 1bis needs |g(C)| > b‖∇F(C)‖ + ½b²G >= ½b²G: test that first, so the gradient is
     // evaluated only where the heuristic can fire.
     if (s.useHeuristic1bis && std::isfinite(fb.G) && std::abs(gc) > 0.5 * b * b * fb.G) {
-        double grad = Length(field_.Gradient(centre));
+        double grad = Length(field_.Gradient(centre, terms));
         if (std::abs(gc) > b * grad + 0.5 * b * b * fb.G) {
             Count(c.h1bisFired);
             return mark;
@@ -491,7 +546,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
     }
     if (depth >= s.maxDepth) {
         Count(c.h2Fired);
-        return MakeLeaf(box, fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G, terms);
     }
     // Heuristics 3 and 3bis stop early only where G is finite: a leaf with infinite G would
     // leave the search no curvature bound at all.
@@ -501,60 +556,64 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low) {
             for (int i = 0; i < 8 && !(anyIn && anyOut); ++i) {
                 LatticePoint q{low.x + ((i & 1) ? edge : 0), low.y + ((i & 2) ? edge : 0),
                                low.z + ((i & 4) ? edge : 0)};
-                bool in = LatticeValue(box.Corner(i), q) > threshold_;
+                bool in = LatticeValue(box.Corner(i), q, terms) > threshold_;
                 anyIn |= in;
                 anyOut |= !in;
             }
             if (anyIn && anyOut) {
                 Count(c.h3Fired);
-                return MakeLeaf(box, fb.L, fb.G);
+                return MakeLeaf(box, fb.L, fb.G, terms);
             }
         }
         if (s.useHeuristic3bis && fb.minDistance > 0 && b / fb.minDistance < s.dRatio) {
             Count(c.h3bisFired);
-            return MakeLeaf(box, fb.L, fb.G);
+            return MakeLeaf(box, fb.L, fb.G, terms);
         }
     }
-    if (MemoryBytes() + sizeof(Internal) + 8 * sizeof(Leaf) > s.memoryBudget) {
+    if (MemoryBytes() + kMaxInternalBytes + 8 * sizeof(Leaf) > s.memoryBudget) {
         Count(c.budgetFired);
         degraded_ = true;
-        return MakeLeaf(box, fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G, terms);
     }
     // Subdivide. Children's nodes are allocated after this point, so a merge below can
     // release them by truncating the three arrays (stack-like allocation; a leaf shares only
     // lists made before it, so truncated lists serve only truncated leaves).
-    std::size_t internalMark = internals_.size(), leafMark = leaves_.size(),
+    std::size_t nodeMark = nodes_.size(), leafMark = buildLeaves_.size(),
                 termMark = terms_.size();
-    Internal node;
+    const int internalMark = internalCount_;
+    Ref children[8];
     for (int i = 0; i < 8; ++i) {
         LatticePoint q{low.x + ((i & 1) ? half : 0), low.y + ((i & 2) ? half : 0),
                        low.z + ((i & 4) ? half : 0)};
-        node.child[i] = Build(ChildBox(box, i), depth + 1, q);
+        children[i] = Build(ChildBox(box, i), depth + 1, q, terms);
     }
     bool allEmpty = true, allFull = true, allLeaves = true;
     double maxChildG = 0;
-    for (Ref r : node.child) {
+    for (Ref r : children) {
         allEmpty &= r == kEmptyRef;
         allFull &= r == kFullRef;
         allLeaves &= r <= kFirstLeafRef;
-        if (r <= kFirstLeafRef) maxChildG = std::max(maxChildG, leaves_[kFirstLeafRef - r].G);
+        if (r <= kFirstLeafRef) {
+            maxChildG = std::max(maxChildG, buildLeaves_[kFirstLeafRef - r].G);
+        }
     }
     if (s.useHeuristic4 && (allEmpty || allFull)) {
         Count(c.h4Fired);
-        internals_.resize(internalMark);
-        leaves_.resize(leafMark);
+        nodes_.resize(nodeMark);
+        internalCount_ = internalMark;
+        buildLeaves_.resize(leafMark);
         terms_.resize(termMark);
         return allEmpty ? kEmptyRef : kFullRef;
     }
     if (s.useHeuristic5 && allLeaves && maxChildG >= s.h5GRatio * fb.G) {
         Count(c.h5Fired);
-        internals_.resize(internalMark);
-        leaves_.resize(leafMark);
+        nodes_.resize(nodeMark);
+        internalCount_ = internalMark;
+        buildLeaves_.resize(leafMark);
         terms_.resize(termMark);
-        return MakeLeaf(box, fb.L, fb.G);
+        return MakeLeaf(box, fb.L, fb.G, terms);
     }
-    internals_.push_back(node);
-    return static_cast<Ref>(internals_.size() - 1);
+    return PushInternal(children);
 }
 
 template <class Visitor>
@@ -566,7 +625,7 @@ bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, dou
         return visit(LeafSpan{t0, t1, leaf.L, leaf.G,
                               {terms_.data() + leaf.firstTerm, leaf.termCount}});
     }
-    const Internal& node = internals_[ref];
+    const uint32_t classes = static_cast<uint32_t>(nodes_[ref]);
     // Split [t0, t1] where the ray crosses the three mid-planes; each piece lies in one
     // child, found from the piece's midpoint. Empty and Full children are skipped before
     // their boxes are formed.
@@ -588,8 +647,8 @@ bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, dou
         if (b <= a && n > 2) continue;
         const Vec3 p = ray.At(0.5 * (a + b));
         const int child = (p.x >= c.x ? 1 : 0) | (p.y >= c.y ? 2 : 0) | (p.z >= c.z ? 4 : 0);
-        const Ref next = node.child[child];
-        if (next == kEmptyRef || next == kFullRef) continue;
+        if (!((classes >> child) & 1)) continue;  // Empty or Full
+        const Ref next = nodes_[ref + 1 + std::popcount(classes & ((1u << child) - 1))];
         Bounds3 sub;  // ChildBox(box, child), from the centre already at hand
         sub.lo = {(child & 1) ? c.x : box.lo.x, (child & 2) ? c.y : box.lo.y,
                   (child & 4) ? c.z : box.lo.z};
@@ -615,7 +674,7 @@ CellClass LGOctree::Classify(const Vec3& p) const {
     while (ref >= 0) {
         int child = ChildIndexOf(box, p);
         box = ChildBox(box, child);
-        ref = internals_[ref].child[child];
+        ref = ChildRef(ref, child);
     }
     if (ref == kEmptyRef) return CellClass::Empty;
     if (ref == kFullRef) return CellClass::Full;
@@ -638,7 +697,7 @@ std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tM
 }
 
 LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings) {
-    return LGOctree(patch.GetField(), threshold, patch.Box(), settings, 0);
+    return LGOctree(patch.GetField(), threshold, patch.Box(), settings, patch.Own());
 }
 
 std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,

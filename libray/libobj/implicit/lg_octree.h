@@ -27,8 +27,8 @@
 //   4      after subdivision: all eight children Full (or all Empty) → parent likewise.
 //   5      after subdivision: all children leaves and max child G >= h5GRatio·G → one
 //          leaf with the parent's L and G (still valid on every child).
-// Empty/Full cells take no memory (tagged child references); leaves store L, G and their
-// active terms (the terms not identically 0 in the cell), which the search sums alone.
+// Empty/Full cells take no memory (two bits in their parent's record); leaves store L and G (rounded
+// up to floats) and their active terms (the terms not identically 0 in the cell), which the search sums alone.
 //
 // Per-leaf search over [tA, tB] (λ = tB − tA, gA, gB the end values, tm the midpoint), in
 // their sound forms (research note §4.2); each but 2 switchable:
@@ -98,10 +98,11 @@ struct OctreeSettings {
     bool useHeuristic5 = true;
     bool usePredominancePruning = true;  // the "patch" rule; needs an own term
     double h5GRatio = 0.9;  // "not too different": children keep >= 90 % of the parent's G
-    // Node memory per tree (internal nodes 32 bytes, leaves 24 bytes plus 4 bytes per
-    // entry of their active-term lists). A cell subdivides only while one more internal
-    // node and eight leaves fit, lists not counted, so the tree may overshoot the budget by
-    // that much (224 bytes) plus eight lists per level of the path being built.
+    // Node memory per tree (internal nodes 4 bytes plus 4 per child that is neither Empty
+    // nor Full, leaves 16 bytes plus 4 bytes per entry of their active-term lists). A cell
+    // subdivides only while one more internal node (at most 36 bytes) and eight leaves fit,
+    // lists not counted, so the tree may overshoot the budget by that much (164 bytes) plus
+    // eight lists per level of the path being built.
     std::size_t memoryBudget = static_cast<std::size_t>(Limits().octreeBytes);
 
     // Search. Root accuracy and splitting floor, as object-space distances.
@@ -149,10 +150,10 @@ enum class CellClass { Empty, Full, Leaf };
 
 class LGOctree {
   public:
-    // Builds the tree of g = F − T over `box` (the field is copied). With ownTerm >= 0 the
-    // tree serves a patch whose own term is field term `ownTerm`: cells where that term
-    // cannot predominate are marked Empty (the "patch" rule), so FirstRoot then only
-    // finds roots an `accept` predominance test could keep.
+    // Builds the tree of g = F − T over `box` (the copy shares the field's term table).
+    // With ownTerm >= 0 the tree serves a patch whose own term is the field's term (row)
+    // `ownTerm`: cells where that term cannot predominate are marked Empty (the "patch"
+    // rule), so FirstRoot then only finds roots an `accept` predominance test could keep.
     LGOctree(Field field, double threshold, const Bounds3& box, const OctreeSettings& settings,
              int ownTerm = -1);
 
@@ -179,8 +180,12 @@ class LGOctree {
     // is skipped on a ray segment whose box is excluded: every point the solver could
     // return lies in that box (the ray's coordinates are monotone in t under rounding),
     // where `accept` would reject it, so the result is the same without the solve. The
-    // margin covers the rounding of TermRange against TermValue (a few ulps).
-    bool OwnExcluded(const Bounds3& box) const;
+    // margin covers the rounding of TermRange against TermValue (a few ulps). Only the rows
+    // in `terms` are tested as excluding terms: a list holding every row that may be
+    // non-zero somewhere in the box (the field's rows, or a leaf's active list for a box in
+    // the leaf) gives the same answer as all rows, since a term that is 0 over the whole box
+    // has a TermRange whose lower end is at most 0 (its upper distance bound is >= R).
+    bool OwnExcluded(const Bounds3& box, std::span<const int32_t> terms) const;
     static constexpr double kExclusionMargin = 1e-9;
 
     // The first t in (tMin, tMax) where g changes sign along the ray (to the tolerance) and
@@ -188,21 +193,36 @@ class LGOctree {
     std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax,
                                     const std::function<bool(double)>& accept = {}) const;
 
-    int InternalCount() const { return static_cast<int>(internals_.size()); }
+    int InternalCount() const { return internalCount_; }
     int LeafCount() const { return static_cast<int>(leaves_.size()); }
     std::size_t MemoryBytes() const;
     // True when the memory budget stopped subdivision somewhere.
     bool Degraded() const { return degraded_; }
 
   private:
-    // Child reference: >= 0 internal node index; kEmptyRef, kFullRef; <= kFirstLeafRef leaf.
+    // Child reference: >= 0 internal node (its record's offset in nodes_); kEmptyRef,
+    // kFullRef; <= kFirstLeafRef leaf.
     using Ref = int32_t;
     static constexpr Ref kEmptyRef = -1, kFullRef = -2, kFirstLeafRef = -3;
-    struct Internal {
-        Ref child[8];
-    };
-    // A leaf's bounds and its active terms, terms_[firstTerm, firstTerm + termCount).
+    // An internal node is a record in nodes_: a header word whose bit i (0–7) says that
+    // child i is live (an internal node or a leaf) and bit 8 + i that a child that is not
+    // live is Full (else Empty), then the references of the live children in child order.
+    // Empty and Full children take no word: a record takes 4 bytes plus 4 per live child
+    // (at most kMaxInternalBytes), against 32 bytes for eight references.
+    static constexpr std::size_t kMaxInternalBytes = 9 * sizeof(Ref);
+    // The reference of child `child` of internal node `node`.
+    Ref ChildRef(Ref node, int child) const;
+    // Appends the record of an internal node with these children; returns its reference.
+    Ref PushInternal(const Ref (&children)[8]);
+    // A leaf's bounds and its active terms, terms_[firstTerm, firstTerm + termCount). L and
+    // G are the cell's bounds rounded up to floats (UpperFloat): still bounds, and a leaf
+    // takes 16 bytes instead of 24.
     struct Leaf {
+        float L, G;
+        uint32_t firstTerm, termCount;
+    };
+    // A leaf while its tree is built, with the exact bounds (heuristic 5 compares them).
+    struct BuildLeaf {
         double L, G;
         uint32_t firstTerm, termCount;
     };
@@ -212,16 +232,28 @@ class LGOctree {
     struct LatticePoint {
         uint32_t x, y, z;
     };
-    Ref Build(const Bounds3& box, int depth, LatticePoint low);
-    // F at a lattice point (p its coordinates), evaluated once per build: neighbouring cells
-    // share corners, and a cell's centre is its children's shared corner. Every cell derives
-    // a given lattice point's coordinates by the same midpoint operations, so the cached
-    // value is exactly what a fresh evaluation would return.
-    double LatticeValue(const Vec3& p, LatticePoint q);
-    bool OwnMayPredominate(const std::vector<TermValueRange>& ranges) const;
+    // Builds cell `box`. `parentTerms` holds every row of the field meeting the parent cell
+    // padded by leafPadding_ (Field::TermsMeeting; the field's rows at the root): the cell
+    // keeps those meeting its own padded box, and its bound, field values and leaf list sum
+    // only these. Every other row's support box misses the cell, so it is skipped by the
+    // full sums and bound too: the results are bit-identical, at the cost of the terms near
+    // the cell instead of all the patch's terms.
+    Ref Build(const Bounds3& box, int depth, LatticePoint low,
+              std::span<const int32_t> parentTerms);
+    // F at a lattice point (p its coordinates, a corner or the centre of a cell whose
+    // TermsMeeting list is `terms`), evaluated once per build: neighbouring cells share
+    // corners, and a cell's centre is its children's shared corner. Every cell derives a
+    // given lattice point's coordinates by the same midpoint operations, so the cached value
+    // is exactly what a fresh evaluation would return.
+    double LatticeValue(const Vec3& p, LatticePoint q, std::span<const int32_t> terms);
+    // `ranges[k]` is the value range of row terms[k] over the cell (Field::Bound); `terms`
+    // holds every row of the field meeting the cell.
+    bool OwnMayPredominate(std::span<const int32_t> terms,
+                           const std::vector<TermValueRange>& ranges) const;
     // A leaf for cell `box`, with the active terms of the cell padded by leafPadding_
-    // (shared with an equal list made before when the list cache finds one).
-    Ref MakeLeaf(const Bounds3& box, double L, double G);
+    // (shared with an equal list made before when the list cache finds one), taken from the
+    // cell's TermsMeeting list `terms`.
+    Ref MakeLeaf(const Bounds3& box, double L, double G, std::span<const int32_t> terms);
     // Extends leafBox_ by the cells of the leaves below `ref` (cell `box`).
     void ExtendLeafBox(Ref ref, const Bounds3& box);
     // The leaves below `ref` (cell `box`) met by the ray within [t0, t1], in ray order.
@@ -243,13 +275,22 @@ class LGOctree {
     static constexpr double kLeafBoxPadding = 1e-6;
     double leafPadding_ = 0;  // kLeafBoxPadding × the root box's longest edge
     OctreeSettings settings_;
-    std::vector<Internal> internals_;
+    std::vector<Ref> nodes_;  // the internal nodes' records
+    int internalCount_ = 0;
     std::vector<Leaf> leaves_;
+    std::vector<BuildLeaf> buildLeaves_;  // the leaves during the build (then empty)
     std::vector<int32_t> terms_;  // the leaves' active-term lists
     Ref root_ = kEmptyRef;
     bool degraded_ = false;
     std::vector<TermValueRange> termRanges_;  // build scratch (Build's predominance test)
+    // Build scratch: the TermsMeeting list of the cell being built at each depth (a
+    // thread's reused arrays, held only during the build).
+    std::vector<std::vector<int32_t>> cellTerms_;
 };
+
+// The smallest float not below x, for x >= 0 (+infinity above the float range, and for
+// x = +infinity): a bound stored as float stays a bound.
+float UpperFloat(double x);
 
 // The statistics counter of Ridders iterations (every octree search counts into it), so
 // callers can attribute iterations to an object by differences of ThreadCount. The build

@@ -9,38 +9,65 @@ namespace rs {
 
 namespace {
 
-std::vector<FieldTerm> SelectTerms(const std::vector<FieldTerm>& all,
-                                   const std::vector<int>& members) {
-    std::vector<FieldTerm> out;
-    out.reserve(members.size());
-    for (int i : members) out.push_back(all[i]);
-    return out;
-}
-
 bool BoxesOverlap(const Bounds3& a, const Bounds3& b) {
     return !Intersection(a, b).IsEmpty();
 }
 
 }  // namespace
 
-Patch::Patch(const std::vector<FieldTerm>& allTerms, std::vector<int> members)
-    : members_(std::move(members)),
-      field_(SelectTerms(allTerms, members_)),
-      box_(TermSupportBounds(allTerms[members_.front()])) {}
+Patch::Patch(const Field& object, std::vector<int> members)
+    : field_(object.Subset(std::move(members))),
+      box_(TermSupportBounds(object.Terms()[field_.Rows().front()])) {}
 
 bool Patch::Predominates(const Vec3& p) const {
-    double own = field_.TermValue(0, p);
-    int ownIndex = members_.front();
-    for (int j = 1; j < field_.Size(); ++j) {
-        double other = field_.TermValue(j, p);
-        if (other > own || (other == own && members_[j] < ownIndex)) return false;
+    const std::vector<int>& members = field_.Rows();
+    const int ownIndex = members.front();
+    const double own = field_.TermValue(ownIndex, p);
+    for (size_t j = 1; j < members.size(); ++j) {
+        double other = field_.TermValue(members[j], p);
+        if (other > own || (other == own && members[j] < ownIndex)) return false;
     }
     return true;
 }
 
-std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode mode,
+bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {
+    const FieldTerm& own = field_.Terms()[Own()];
+    const double a = LengthSquared(ray.dir);
+    if (!(a > 0)) return true;
+    const double reach = own.kernel.Radius() * (1 + kSupportMargin);
+    // NaNs (overflow) fail every comparison below: true.
+    if (const auto* point = std::get_if<PointSkeleton>(&own.skeleton)) {
+        const Vec3 oc = ray.origin - point->center;
+        const double radius = reach + kOriginMargin * Length(oc);
+        // The closest approach to the centre, at parameter tc and squared distance d2; the
+        // enlarged ball spans tc ± half.
+        const double tc = -Dot(oc, ray.dir) / a;
+        const double d2 = LengthSquared(ray.At(tc) - point->center);
+        if (d2 > radius * radius) return false;
+        const double half = std::sqrt((radius * radius - d2) / a);
+        return !(tc + half < tMin || tc - half > tMax);
+    }
+    if (const auto* segment = std::get_if<SegmentSkeleton>(&own.skeleton)) {
+        // The distance between the ray's line and the segment: projected along the ray
+        // onto the plane normal to it (a linear map), the line becomes the origin and the
+        // segment the segment [qa, qb], so it is the origin's distance to [qa, qb]. An
+        // inexact s only moves the point found along [qa, qb] by a rounding error.
+        const Vec3 pa = segment->a - ray.origin, pb = segment->b - ray.origin;
+        const Vec3 qa = pa - ray.dir * (Dot(pa, ray.dir) / a);
+        const Vec3 qb = pb - ray.dir * (Dot(pb, ray.dir) / a);
+        const Vec3 e = qb - qa;
+        const double ee = LengthSquared(e);
+        const double s = ee > 0 ? std::clamp(-Dot(qa, e) / ee, 0.0, 1.0) : 0.0;
+        const double radius = reach + kOriginMargin * (Length(pa) + Length(pb));
+        return !(LengthSquared(qa + e * s) > radius * radius);
+    }
+    return true;
+}
+
+std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
                                 const std::vector<std::pair<int, int>>& blendPairs,
                                 const std::vector<std::pair<int, int>>& separatePairs) {
+    const std::vector<FieldTerm>& terms = object.Terms();
     const int n = static_cast<int>(terms.size());
     std::vector<Bounds3> support(n);
     for (int i = 0; i < n; ++i) support[i] = TermSupportBounds(terms[i]);
@@ -119,7 +146,7 @@ std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode m
             if (j == i || !BoxesOverlap(support[i], support[j]) || separate(i, j)) continue;
             members.push_back(j);
         }
-        patches.emplace_back(terms, std::move(members));
+        patches.emplace_back(object, std::move(members));
     }
     return patches;
 }

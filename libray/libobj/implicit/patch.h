@@ -27,23 +27,40 @@
 #include <utility>
 #include <vector>
 
+#include "libcommon/ray.h"
 #include "libobj/implicit/field.h"
 
 namespace rs {
 
 class Patch {
   public:
-    // `members` are global term indices, the own term first.
-    Patch(const std::vector<FieldTerm>& allTerms, std::vector<int> members);
+    // `members` are term indices (rows of `object`'s table), the own term first. The patch
+    // field shares the object's term table (Field::Subset): a patch stores its member list,
+    // not copies of its terms.
+    Patch(const Field& object, std::vector<int> members);
 
-    int Own() const { return members_.front(); }
-    const std::vector<int>& Members() const { return members_; }
-    // The patch field: terms in the order of Members() (own term at index 0).
+    int Own() const { return field_.Rows().front(); }
+    const std::vector<int>& Members() const { return field_.Rows(); }
+    // The patch field: the terms of Members(), summed in that order (own term first); its
+    // term indices are the object's.
     const Field& GetField() const { return field_; }
     const Bounds3& Box() const { return box_; }
 
-    // Whether the own term predominates at p (ties to the lowest global index).
+    // Whether the own term predominates at p (ties to the lowest term index).
     bool Predominates(const Vec3& p) const;
+    // False only when the ray's piece (tMin, tMax) surely misses the own term's support
+    // {d < R}, where no root can be accepted (the own term is 0 there; see Box()), so the
+    // patch's search may be skipped, and its tree left unbuilt. Point skeletons test the
+    // ball of radius R around the centre (its span along the ray too), segments the
+    // capsule (the distance from the ray's line to the segment), both enlarged for
+    // rounding; other kinds are not tested (true: their support box, Box(), is the test
+    // the caller makes).
+    bool MayHoldRoot(const Ray& ray, double tMin, double tMax) const;
+    // The enlargement: relative 1e-6 of R plus 1e-9 of the distances from the ray origin
+    // to the skeleton's points (centre, or both ends). The closest approaches and the
+    // accepted points o + t·d are computed with errors of a few ulps of those lengths
+    // (~1e-15 relative), far inside it.
+    static constexpr double kSupportMargin = 1e-6, kOriginMargin = 1e-9;
     // Adds a deformation term to the patch field (contact.h); predominance, members and box
     // are unchanged.
     void Deform(std::shared_ptr<const FieldDeformation> deformation) {
@@ -51,17 +68,17 @@ class Patch {
     }
 
   private:
-    std::vector<int> members_;
     Field field_;
     Bounds3 box_;
 };
 
 enum class BlendMode { Automatic, Explicit };
 
-// Builds one patch per positive-weight term. In Explicit mode `blendPairs` lists the term
+// Builds one patch per positive-weight term of `object` (a field made from the object's
+// terms, whose table the patches share). In Explicit mode `blendPairs` lists the term
 // index pairs that blend (symmetric; others are ignored); in Automatic mode it is unused.
 // `separatePairs` (symmetric) never blend, in either mode: the pairs in contact (contact.h).
-std::vector<Patch> BuildPatches(const std::vector<FieldTerm>& terms, BlendMode mode,
+std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
                                 const std::vector<std::pair<int, int>>& blendPairs = {},
                                 const std::vector<std::pair<int, int>>& separatePairs = {});
 

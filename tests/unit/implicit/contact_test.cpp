@@ -210,7 +210,7 @@ struct TwoSpheres {
             t.kernel = Kernel::GascuelQuadratic(1, 1, 2);
             terms.push_back(t);
         }
-        patches = BuildPatches(terms, BlendMode::Automatic, {}, {{0, 1}});
+        patches = BuildPatches(Field(terms), BlendMode::Automatic, {}, {{0, 1}});
         for (const Patch& p : patches) trees.push_back(BuildPatchOctree(p, 1, settings));
         std::vector<Propagation> props;
         if (width > 0) props = {{0, width, height}, {1, width, height}};
@@ -245,7 +245,8 @@ TEST(ContactSpheres, ContactsAreDeclaredSeparateAndMeasured) {
 TEST(ContactSpheres, AffectedBoxHoldsEveryChangedPoint) {
     for (double width : {0.0, 0.3}) {
         TwoSpheres s(width, 1.0);
-        Field undeformed(s.patches[0].GetField().Terms());
+        Field undeformed = s.patches[0].GetField();  // shares the terms
+        undeformed.SetDeformation(nullptr);
         const Bounds3& affected = s.deformed[0].affected;
         Rng rng(5);
         int changed = 0;
@@ -377,7 +378,7 @@ TEST(ContactSpheres, NoBulgeWithoutInterpenetration) {
         terms.push_back(t);
     }
     OctreeSettings settings;
-    std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic, {}, {{0, 1}});
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic, {}, {{0, 1}});
     std::vector<LGOctree> trees;
     for (const Patch& p : patches) trees.push_back(BuildPatchOctree(p, 1, settings));
     std::vector<DeformedPatch> d =
@@ -418,7 +419,7 @@ TEST(ContactPairs, DeformedSearchFindsTheFirstSignChange) {
             terms.push_back(t);
         }
         OctreeSettings settings;
-        std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic, {}, {{0, 1}});
+        std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic, {}, {{0, 1}});
         std::vector<LGOctree> trees;
         for (const Patch& p : patches) trees.push_back(BuildPatchOctree(p, 1, settings));
         double width = seed % 4 == 0 ? 0 : Uniform(rng, 0.05, 0.4);

@@ -122,6 +122,89 @@ TEST(Field, BoundHoldsOnDenseSamples) {
     EXPECT_GT(secondChecks, 50000);  // most boxes have a finite G
 }
 
+// A Subset sums its rows of the shared table in the given order: bit-identical to a field
+// made from copies of those terms, for values, gradients, bounds and term ranges.
+TEST(Field, SubsetEqualsAFieldOfCopiedTerms) {
+    for (uint64_t seed = 1; seed <= 200; ++seed) {
+        Rng rng(seed);
+        Field all = RandomField(rng, false);
+        std::vector<int> rows;
+        for (int i = all.Size() - 1; i >= 0; --i) {
+            if (rng.Uniform() < 0.7) rows.push_back(i);  // descending: not the table's order
+        }
+        std::vector<FieldTerm> copies;
+        for (int i : rows) copies.push_back(all.Terms()[i]);
+        const Field subset = all.Subset(rows), copied(std::move(copies));
+        ASSERT_EQ(subset.Rows(), rows);
+        Bounds3 box = testing::RandomBox(rng, -2, 1.5, 1.0);
+        FieldBound a = subset.Bound(box), b = copied.Bound(box);
+        EXPECT_EQ(a.valueMin, b.valueMin);
+        EXPECT_EQ(a.valueMax, b.valueMax);
+        EXPECT_EQ(a.L, b.L);
+        EXPECT_EQ(a.G, b.G);
+        EXPECT_EQ(subset.SupportBounds().lo, copied.SupportBounds().lo);
+        EXPECT_EQ(subset.SupportBounds().hi, copied.SupportBounds().hi);
+        for (int i = 0; i < 50; ++i) {
+            Vec3 p = testing::RandomInBox(rng, box);
+            EXPECT_EQ(subset.Value(p), copied.Value(p)) << "seed " << seed;
+            Vec3 ga = subset.Gradient(p), gb = copied.Gradient(p);
+            EXPECT_EQ(ga.x, gb.x);
+            EXPECT_EQ(ga.y, gb.y);
+            EXPECT_EQ(ga.z, gb.z);
+        }
+        for (size_t k = 0; k < rows.size(); ++k) {
+            double lo1, hi1, lo2, hi2;
+            subset.TermRange(rows[k], box, lo1, hi1);
+            copied.TermRange(static_cast<int>(k), box, lo2, hi2);
+            EXPECT_EQ(lo1, lo2);
+            EXPECT_EQ(hi1, hi2);
+        }
+    }
+}
+
+// A TermsMeeting list made for a box serves every box and point inside it: bounds, term
+// ranges, active lists and sums from it equal the full ones bit for bit (the octree build
+// hands each cell's list to its children).
+TEST(Field, TermsMeetingListServesSubBoxes) {
+    for (uint64_t seed = 1; seed <= 300; ++seed) {
+        Rng rng(seed);
+        Field f = RandomField(rng, false);
+        Bounds3 outer = testing::RandomBox(rng, -2, 1.5, seed % 2 ? 2.0 : 0.5);
+        std::vector<int32_t> meeting;
+        f.TermsMeeting(outer, f.Rows(), meeting);
+        for (int b = 0; b < 10; ++b) {
+            Bounds3 inner(testing::RandomInBox(rng, outer), testing::RandomInBox(rng, outer));
+            std::vector<TermValueRange> ranges;
+            FieldBound full = f.Bound(inner), listed = f.Bound(inner, meeting, &ranges);
+            EXPECT_EQ(full.valueMin, listed.valueMin) << "seed " << seed;
+            EXPECT_EQ(full.valueMax, listed.valueMax);
+            EXPECT_EQ(full.L, listed.L);
+            EXPECT_EQ(full.G, listed.G);
+            EXPECT_EQ(full.minDistance, listed.minDistance);
+            EXPECT_EQ(full.activeTerms, listed.activeTerms);
+            ASSERT_EQ(ranges.size(), meeting.size());
+            for (size_t k = 0; k < meeting.size(); ++k) {
+                double lo, hi;
+                f.TermRange(meeting[k], inner, lo, hi);
+                EXPECT_EQ(ranges[k].lo, lo);
+                EXPECT_EQ(ranges[k].hi, hi);
+            }
+            std::vector<int32_t> activeFull, activeListed;
+            f.ActiveTerms(inner, f.Rows(), activeFull);
+            f.ActiveTerms(inner, meeting, activeListed);
+            EXPECT_EQ(activeFull, activeListed);
+            for (int i = 0; i < 20; ++i) {
+                Vec3 p = i < 8 ? inner.Corner(i) : testing::RandomInBox(rng, inner);
+                EXPECT_EQ(f.Value(p), f.Value(p, meeting)) << "seed " << seed;
+                Vec3 ga = f.Gradient(p), gb = f.Gradient(p, meeting);
+                EXPECT_EQ(ga.x, gb.x);
+                EXPECT_EQ(ga.y, gb.y);
+                EXPECT_EQ(ga.z, gb.z);
+            }
+        }
+    }
+}
+
 TEST(Field, TermsOutsideTheBoxContributeNothing) {
     Field f({{"a", PointSkeleton{{0, 0, 0}}, Kernel::Blob(1, 1), 1},
              {"b", PointSkeleton{{10, 0, 0}}, Kernel::Blob(1, 1), 1}});

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "libcommon/error.h"
@@ -222,7 +223,7 @@ TEST(LGOctree, LeafBoxHoldsEveryLeafCell) {
     Rng rng(7);
     const std::vector<FieldTerm> terms = RandomPointTerms(rng, [](int) { return Kernel::Blob(1, 0.9); });
     int leafPoints = 0, missingRays = 0;
-    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+    for (const Patch& patch : BuildPatches(Field(terms), BlendMode::Automatic)) {
         LGOctree tree = BuildPatchOctree(patch, 0.6, OctreeSettings{});
         const Bounds3& leafBox = tree.LeafBox();
         for (int i = 0; i < 20000; ++i) {
@@ -247,20 +248,25 @@ TEST(LGOctree, LeafBoxHoldsEveryLeafCell) {
     EXPECT_GT(missingRays, 1000);
 }
 
-// OwnExcluded(box) holds only where no point of the box predominates (dense samples in
-// random small boxes), and it does fire.
+// OwnExcluded(box, terms) holds only where no point of the box predominates (dense samples
+// in random small boxes), and it does fire.
 TEST(LGOctree, ExcludedBoxesHoldNoPredominantPoint) {
     Rng rng(11);
     const std::vector<FieldTerm> terms = RandomPointTerms(rng, [](int i) {
         return i % 2 ? Kernel::Blob(1, 0.9) : Kernel::GascuelQuadratic(0.35, 2.4, 0.9);
     });
     int excluded = 0;
-    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+    for (const Patch& patch : BuildPatches(Field(terms), BlendMode::Automatic)) {
         LGOctree tree = BuildPatchOctree(patch, 0.6, OctreeSettings{});
         for (int i = 0; i < 400; ++i) {
             Vec3 a = testing::RandomInBox(rng, tree.Box());
             Bounds3 box(a, a + RandomPoint(rng, -0.2, 0.2));
-            if (!tree.OwnExcluded(box)) continue;
+            // The box's active terms (what the search passes) answer as all rows do.
+            std::vector<int32_t> active;
+            tree.GetField().ActiveTerms(box, tree.GetField().Rows(), active);
+            const bool all = tree.OwnExcluded(box, tree.GetField().Rows());
+            ASSERT_EQ(tree.OwnExcluded(box, active), all);
+            if (!all) continue;
             ++excluded;
             for (int k = 0; k < 200; ++k) {
                 ASSERT_FALSE(patch.Predominates(testing::RandomInBox(rng, box)));
@@ -276,7 +282,7 @@ TEST(LGOctree, PatchRuleCellsHoldNoAcceptableRoot) {
     const std::vector<FieldTerm> terms =
         RandomPointTerms(rng, [](int) { return Kernel::GascuelQuadratic(0.35, 2.4, 0.9); });
     int pruned = 0;
-    for (const Patch& patch : BuildPatches(terms, BlendMode::Automatic)) {
+    for (const Patch& patch : BuildPatches(Field(terms), BlendMode::Automatic)) {
         LGOctree tree = BuildPatchOctree(patch, 1.0, OctreeSettings{});
         for (int i = 0; i < 3000; ++i) {
             Vec3 p = testing::RandomInBox(rng, tree.Box());
@@ -312,6 +318,62 @@ TEST(LGOctree, MemoryBudgetDegradesWithWarningAndStaysExact) {
     EXPECT_NEAR(*got, 5 - std::sqrt(0.25 - 0.05), 1e-7);
 }
 
+// UpperFloat returns a float >= x, one float step at most above the nearest float, and
+// +infinity beyond the float range.
+TEST(LGOctree, UpperFloatIsTheNextFloatUp) {
+    Rng rng(11);
+    for (int i = 0; i < 100000; ++i) {
+        const double x = std::ldexp(rng.Uniform(), static_cast<int>(rng.Uniform() * 300) - 150);
+        const float f = UpperFloat(x);
+        ASSERT_GE(static_cast<double>(f), x) << x;
+        ASSERT_LT(static_cast<double>(std::nextafter(f, 0.0f)), x) << x;
+    }
+    EXPECT_EQ(UpperFloat(0), 0.0f);
+    EXPECT_EQ(UpperFloat(1), 1.0f);
+    EXPECT_EQ(UpperFloat(1e300), std::numeric_limits<float>::infinity());
+    EXPECT_EQ(UpperFloat(std::numeric_limits<double>::infinity()),
+              std::numeric_limits<float>::infinity());
+}
+
+// The L and G a leaf hands the search (stored rounded up to floats) bound the field along
+// every ray piece in the leaf: the analytic directional derivative at sampled parameters
+// and central second differences (h = 1e-3 of the span; slack 1e-6 absolute and relative
+// for round-off, as in the field's bound tests).
+TEST(LGOctree, LeafBoundsHoldAlongRayPieces) {
+    int checked = 0;
+    for (uint64_t seed = 1; seed <= 20; ++seed) {
+        Rng rng(seed);
+        auto kernel = [&rng](int) {
+            return rng.Uniform() < 0.5 ? Kernel::Blob(1, Uniform(rng, 0.6, 1.2))
+                                       : Kernel::GascuelQuadratic(0.4, 2, 1.1);
+        };
+        Scene scene(RandomPointTerms(rng, kernel), 0.6);
+        for (int r = 0; r < 50; ++r) {
+            Ray ray{RandomPoint(rng, -3, 3), RandomUnit(rng) * Uniform(rng, 0.5, 2)};
+            scene.tree.Traverse(ray, -1e9, 1e9, [&](const LeafSpan& span) {
+                const double len = Length(ray.dir), lambda = span.tExit - span.tEnter;
+                if (!(lambda > 1e-6)) return false;
+                const double h = 1e-3 * lambda;
+                for (int i = 0; i < 20; ++i) {
+                    const double t = span.tEnter + h + (lambda - 2 * h) * rng.Uniform();
+                    const Vec3 p = ray.At(t);
+                    const double slope = Dot(scene.field.Gradient(p), ray.dir);
+                    EXPECT_LE(std::abs(slope), span.L * len * (1 + 1e-12) + 1e-12);
+                    if (!std::isfinite(span.G)) continue;
+                    const double second = (scene.field.Value(ray.At(t - h)) -
+                                           2 * scene.field.Value(p) +
+                                           scene.field.Value(ray.At(t + h))) /
+                                          (h * h);
+                    EXPECT_LE(std::abs(second), span.G * len * len * (1 + 1e-6) + 1e-6);
+                    ++checked;
+                }
+                return false;
+            });
+        }
+    }
+    EXPECT_GT(checked, 1000);
+}
+
 TEST(LGOctree, CountsWork) {
     ResetStats();
     Scene scene({{"p", PointSkeleton{{0, 0, 0}}, Kernel::GascuelQuadratic(0.5, 2, 1.2), 1}}, 1.0);
@@ -338,7 +400,7 @@ TEST(LGOctree, AutomaticPatchesMatchPlainSum) {
             terms.push_back({StringPrintf("t%d", i), s, k, 1});
         }
         Scene plain(terms, 1.0);
-        std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+        std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
         std::vector<LGOctree> trees;
         for (const Patch& p : patches)
             trees.push_back(BuildPatchOctree(p, 1.0, OctreeSettings{}));
@@ -482,7 +544,7 @@ TEST(LGOctree, ExplicitBlendListsGiveUnionOfSpheres) {
         }
         return best;
     };
-    std::vector<Patch> separate = BuildPatches(terms, BlendMode::Explicit, {{1, 2}});
+    std::vector<Patch> separate = BuildPatches(Field(terms), BlendMode::Explicit, {{1, 2}});
     std::vector<LGOctree> trees;
     for (const Patch& p : separate)
         trees.push_back(BuildPatchOctree(p, 1.0, OctreeSettings{}));
@@ -512,7 +574,7 @@ TEST(LGOctree, ExplicitBlendListsGiveUnionOfSpheres) {
     auto t = firstHit(separate, trees, crease);
     ASSERT_TRUE(t.has_value());
     EXPECT_NEAR(*t, 5 - 0.4, 1e-7);
-    std::vector<Patch> blended = BuildPatches(terms, BlendMode::Automatic);
+    std::vector<Patch> blended = BuildPatches(Field(terms), BlendMode::Automatic);
     std::vector<LGOctree> blendedTrees;
     for (const Patch& p : blended)
         blendedTrees.push_back(BuildPatchOctree(p, 1.0, OctreeSettings{}));

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <string>
+
+#include "test_util.h"
 
 namespace rs {
 namespace {
@@ -15,7 +18,7 @@ FieldTerm Point(const std::string& name, Vec3 c, double weight = 1) {
 TEST(Patch, AutomaticNeighboursAreOverlappingSupports) {
     std::vector<FieldTerm> terms{Point("a", {0, 0, 0}), Point("b", {1, 0, 0}),
                                  Point("c", {10, 0, 0})};
-    std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
     ASSERT_EQ(patches.size(), 3u);
     EXPECT_EQ(patches[0].Members(), (std::vector<int>{0, 1}));
     EXPECT_EQ(patches[1].Members(), (std::vector<int>{1, 0}));
@@ -27,7 +30,7 @@ TEST(Patch, AutomaticNeighboursAreOverlappingSupports) {
 TEST(Patch, ExplicitModeBlendsDeclaredPairsOnly) {
     std::vector<FieldTerm> terms{Point("a", {0, 0, 0}), Point("b", {1, 0, 0}),
                                  Point("c", {0.5, 0.5, 0})};
-    std::vector<Patch> patches = BuildPatches(terms, BlendMode::Explicit, {{0, 2}});
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Explicit, {{0, 2}});
     ASSERT_EQ(patches.size(), 3u);
     EXPECT_EQ(patches[0].Members(), (std::vector<int>{0, 2}));
     EXPECT_EQ(patches[1].Members(), (std::vector<int>{1}));
@@ -36,14 +39,14 @@ TEST(Patch, ExplicitModeBlendsDeclaredPairsOnly) {
 
 TEST(Patch, NegativeTermsOwnNoPatchButAreNeighbours) {
     std::vector<FieldTerm> terms{Point("a", {0, 0, 0}), Point("hole", {0.3, 0, 0}, -1)};
-    std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
     ASSERT_EQ(patches.size(), 1u);
     EXPECT_EQ(patches[0].Members(), (std::vector<int>{0, 1}));
 }
 
 TEST(Patch, PredominanceBreaksTiesByLowestIndex) {
     std::vector<FieldTerm> terms{Point("a", {-1, 0, 0}), Point("b", {1, 0, 0})};
-    std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
     Vec3 mid{0, 0.3, 0};  // equidistant: exact tie
     EXPECT_TRUE(patches[0].Predominates(mid));
     EXPECT_FALSE(patches[1].Predominates(mid));
@@ -51,7 +54,7 @@ TEST(Patch, PredominanceBreaksTiesByLowestIndex) {
     EXPECT_FALSE(patches[0].Predominates({0.1, 0.3, 0}));
     // Coincident skeletons: only the first ever predominates.
     std::vector<FieldTerm> same{Point("a", {0, 0, 0}), Point("b", {0, 0, 0})};
-    std::vector<Patch> twins = BuildPatches(same, BlendMode::Automatic);
+    std::vector<Patch> twins = BuildPatches(Field(same), BlendMode::Automatic);
     EXPECT_TRUE(twins[0].Predominates({0.2, 0, 0}));
     EXPECT_FALSE(twins[1].Predominates({0.2, 0, 0}));
 }
@@ -59,7 +62,7 @@ TEST(Patch, PredominanceBreaksTiesByLowestIndex) {
 TEST(Patch, PatchFieldIsOwnPlusNeighbours) {
     std::vector<FieldTerm> terms{Point("a", {0, 0, 0}), Point("b", {1, 0, 0}),
                                  Point("c", {10, 0, 0})};
-    std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
     Vec3 p{0.4, 0.1, 0};
     Field all(terms);
     EXPECT_DOUBLE_EQ(patches[0].GetField().Value(p), all.Value(p));
@@ -78,7 +81,7 @@ TEST(Patch, AutomaticNeighboursMatchAllPairsOnRandomTerms) {
         if (i % 5 == 0) t.skeleton = SegmentSkeleton{a, a + Vec3{coord(rng), 0, 1} * 0.5};
         terms.push_back(t);
     }
-    std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
     size_t next = 0;
     for (int i = 0; i < static_cast<int>(terms.size()); ++i) {
         if (!(terms[i].weight > 0)) continue;
@@ -95,6 +98,58 @@ TEST(Patch, AutomaticNeighboursMatchAllPairsOnRandomTerms) {
         EXPECT_EQ(patches[next++].Members(), expected) << "term " << i;
     }
     EXPECT_EQ(next, patches.size());
+}
+
+// MayHoldRoot is false only for ray pieces where the own term is 0 at every sampled point
+// (so no root can be accepted there), and it passes most pieces that enter the support;
+// for a point's ball and a segment's capsule.
+TEST(Patch, MayHoldRootFalseOnlyWhereTheOwnTermVanishes) {
+    const Kernel kernel = Kernel::GascuelQuadratic(0.5, 2, 1.5);
+    for (const Skeleton& own : {Skeleton{PointSkeleton{{0.2, -0.1, 0.3}}},
+                                Skeleton{SegmentSkeleton{{-0.7, 0.4, 0.1}, {0.9, -0.2, 0.6}}}}) {
+        Rng rng(3);
+        std::vector<FieldTerm> terms{{"a", own, kernel, 1}, Point("b", {1, 0, 0})};
+        std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
+        const Patch& patch = patches[0];
+        int skipped = 0, entering = 0;
+        for (int i = 0; i < 20000; ++i) {
+            Ray ray{testing::RandomPoint(rng, -4, 4),
+                    testing::RandomUnit(rng) * testing::Uniform(rng, 0.1, 3)};
+            const double tMin = testing::Uniform(rng, -2, 2);
+            const double tMax = tMin + testing::Uniform(rng, 0, 6);
+            bool ownSomewhere = false;
+            for (int k = 0; k <= 2000 && !ownSomewhere; ++k) {
+                const Vec3 p = ray.At(tMin + (tMax - tMin) * k / 2000);
+                ownSomewhere = patch.GetField().TermValue(patch.Own(), p) > 0;
+            }
+            if (!patch.MayHoldRoot(ray, tMin, tMax)) {
+                ++skipped;
+                ASSERT_FALSE(ownSomewhere) << "ray " << i;
+            } else if (ownSomewhere) {
+                ++entering;
+            }
+        }
+        EXPECT_GT(skipped, 3000);
+        EXPECT_GT(entering, 1000);
+    }
+    // Grazing a point's ball: rays passing its surface at R(1 ± 1e-3) on either side.
+    const Vec3 c{0.2, -0.1, 0.3};
+    std::vector<Patch> patches = BuildPatches(Field({Point("a", c)}), BlendMode::Automatic);
+    const double radius = Point("a", c).kernel.Radius();
+    for (double f : {1 - 1e-3, 1 + 1e-3}) {
+        Ray ray{c + Vec3{-5, radius * f, 0}, {1, 0, 0}};
+        EXPECT_EQ(patches[0].MayHoldRoot(ray, 0, 10), f < 1) << f;
+        EXPECT_FALSE(patches[0].MayHoldRoot(ray, 6, 10));  // the chord lies near t = 5
+    }
+    // Grazing a segment's capsule from the side, parallel and crossing its axis.
+    std::vector<Patch> capsule = BuildPatches(
+        Field({{"s", SegmentSkeleton{{0, 0, 0}, {2, 0, 0}}, Point("x", c).kernel, 1}}),
+        BlendMode::Automatic);
+    for (double f : {1 - 1e-3, 1 + 1e-3}) {
+        Ray along{{-5, radius * f, 0}, {1, 0, 0}}, across{{1, -5, radius * f}, {0, 1, 0}};
+        EXPECT_EQ(capsule[0].MayHoldRoot(along, 0, 20), f < 1) << f;
+        EXPECT_EQ(capsule[0].MayHoldRoot(across, 0, 20), f < 1) << f;
+    }
 }
 
 }  // namespace

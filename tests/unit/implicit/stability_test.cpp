@@ -12,7 +12,7 @@ namespace {
 // First hit of the union of automatic patches (the primitive's algorithm).
 std::optional<double> PatchesHit(const std::vector<FieldTerm>& terms, double threshold,
                                  const Ray& ray, double tMin = 1e-5) {
-    std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
     std::optional<double> best;
     for (const Patch& p : patches) {
         LGOctree tree = BuildPatchOctree(p, threshold, OctreeSettings{});
@@ -32,7 +32,7 @@ TEST(Stability, CoincidentSkeletons) {
         auto t = PatchesHit(terms, 0.5, {{0.1, 0, -5}, {0, 0, 1}});
         ASSERT_TRUE(t.has_value()) << n;
         EXPECT_NEAR(*t, 5 - std::sqrt(radius * radius - 0.01), 1e-7) << n;
-        std::vector<Patch> patches = BuildPatches(terms, BlendMode::Automatic);
+        std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
         int accepting = 0;
         for (const Patch& p : patches) accepting += p.Predominates({0.1, 0, -radius}) ? 1 : 0;
         EXPECT_EQ(accepting, 1);
