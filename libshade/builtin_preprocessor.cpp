@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
-#include <sstream>
 
+#include "libcommon/error.h"
+#include "libcommon/limits.h"
 
 namespace rs {
 
@@ -269,6 +270,26 @@ std::string_view TakeIdentifier(std::string_view& s) {
     return word;
 }
 
+// The contents of the included file `path`, named on line `line` of `fileName`. A file
+// that cannot be read goes to cpp (which reports it); one beyond the scene text limit is an
+// error here, since cpp would read all of it (an endless device such as /dev/zero hangs it).
+std::string ReadInclude(const std::string& path, const std::string& fileName, int line) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw NeedsCpp{};
+    const size_t limit = static_cast<size_t>(Limits().sceneBytes);
+    std::string contents;
+    char block[65536];
+    while (file.read(block, sizeof block) || file.gcount() > 0) {
+        contents.append(block, static_cast<size_t>(file.gcount()));
+        if (contents.size() > limit) {
+            Report(Severity::Abort, {fileName, line}, "Included file %s exceeds %zu bytes",
+                   path.c_str(), limit);
+        }
+    }
+    if (file.bad()) throw NeedsCpp{};
+    return contents;
+}
+
 class Preprocessor {
   public:
     explicit Preprocessor(const std::vector<CommandLineMacro>& predefined) {
@@ -514,10 +535,7 @@ std::string Preprocessor::Run(std::string text, const std::string& fileName, int
             const std::string path = name[0] == '/' || slash == std::string::npos
                                          ? name
                                          : fileName.substr(0, slash + 1) + name;
-            std::ifstream file(path, std::ios::binary);
-            std::stringstream contents;
-            if (!file || !(contents << file.rdbuf())) throw NeedsCpp{};
-            std::string included = Run(contents.str(), path, depth + 1);
+            std::string included = Run(ReadInclude(path, fileName, lineNumber), path, depth + 1);
             if (!included.empty() && included.back() != '\n') included += '\n';
             out += "# 1 \"" + path + "\"\n" + included + "# " + std::to_string(lineNumber + 1) +
                    " \"" + fileName + "\"";
