@@ -3,7 +3,8 @@
 #     tests/fuzz/run-fuzzer.sh [seconds] [extra libFuzzer options]
 # The seed corpus is every scene we ship (../shared/scenes/rayshade and examples/), both raw
 # and through `cpp -P`; new inputs accumulate in build-fuzz/corpus, crashers in
-# build-fuzz/artifacts. The log is build-fuzz/fuzz.log. Default: 1800 seconds.
+# build-fuzz/artifacts. The log is build-fuzz/fuzz.log. Default: 1800 seconds. Standard input
+# is empty, since an input may include /dev/stdin.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:-1800}
@@ -23,4 +24,4 @@ done
 ASAN_OPTIONS=detect_leaks=1 build-fuzz/tests/fuzz/fuzz_frontend build-fuzz/corpus "$seeds" \
     -dict=tests/fuzz/rayshade.dict -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
     -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/ \
-    "$@" 2>&1 | tee build-fuzz/fuzz.log
+    "$@" </dev/null 2>&1 | tee build-fuzz/fuzz.log
