@@ -93,12 +93,19 @@ std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
             width = Max(width, b.hi - b.lo);
             origin = Min(origin, b.lo);
         }
+        // Cell coordinates are clamped to ±2^60, so that they and their neighbours' keys
+        // stay integers for supports of absurd spread (coordinates of 1e64 and beyond):
+        // clamping is monotone, so boxes in equal or adjacent cells stay so. An axis whose
+        // widest support is not finite has one cell, as does one of zero width; a NaN
+        // quotient (infinite supports) goes to cell 0.
+        constexpr double kMaxCell = 0x1p60;
         auto cellOf = [&](const Vec3& p) {
             std::array<long long, 3> c{};
             for (int a = 0; a < 3; ++a) {
-                c[a] = width[a] > 0 ? static_cast<long long>(std::floor((p[a] - origin[a]) /
-                                                                         width[a]))
-                                    : 0;
+                if (!(width[a] > 0 && std::isfinite(width[a]))) continue;
+                const double q = std::floor((p[a] - origin[a]) / width[a]);
+                c[a] = std::isnan(q) ? 0
+                                     : static_cast<long long>(std::clamp(q, -kMaxCell, kMaxCell));
             }
             return c;
         };

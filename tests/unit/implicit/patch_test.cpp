@@ -100,6 +100,20 @@ TEST(Patch, AutomaticNeighboursMatchAllPairsOnRandomTerms) {
     EXPECT_EQ(next, patches.size());
 }
 
+// Supports far apart (1e64) put the neighbour grid's cell coordinates beyond every
+// integer type; they are clamped (under UBSan an unclamped conversion fails this test),
+// and overlapping supports out there still find each other.
+TEST(Patch, AutomaticNeighboursAtAbsurdCoordinates) {
+    std::vector<FieldTerm> terms{Point("near", {0, 0, 0}), Point("far", {1e64, 0, 0}),
+                                 Point("far2", {1e64, 1, 0}), Point("farther", {8.9e64, 0, 0})};
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
+    ASSERT_EQ(patches.size(), 4u);
+    EXPECT_EQ(patches[0].Members(), (std::vector<int>{0}));
+    EXPECT_EQ(patches[1].Members(), (std::vector<int>{1, 2}));
+    EXPECT_EQ(patches[2].Members(), (std::vector<int>{2, 1}));
+    EXPECT_EQ(patches[3].Members(), (std::vector<int>{3}));
+}
+
 // MayHoldRoot is false only for ray pieces where the own term is 0 at every sampled point
 // (so no root can be accepted there), and it passes most pieces that enter the support;
 // for a point's ball and a segment's capsule.
