@@ -255,6 +255,11 @@ class LatticeValueTable {
             if (keys_[i] == key) return &values_[i];
         }
     }
+    // The memory the values of the current build need: a slot each (key, value, stamp) at
+    // the table's highest load, one half.
+    size_t LiveBytes() const {
+        return 2 * size_ * (sizeof(uint64_t) + sizeof(double) + sizeof(uint32_t));
+    }
     // key must be absent.
     double* Insert(uint64_t key, double value) {
         if (2 * (size_ + 1) > stamps_.size()) Grow();
@@ -570,7 +575,8 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
             return MakeLeaf(box, fb.L, fb.G, terms);
         }
     }
-    if (MemoryBytes() + kMaxInternalBytes + 8 * sizeof(Leaf) > s.memoryBudget) {
+    if (MemoryBytes() + kMaxInternalBytes + 8 * sizeof(Leaf) > s.memoryBudget ||
+        LatticeTable().LiveBytes() > s.memoryBudget) {
         Count(c.budgetFired);
         degraded_ = true;
         return MakeLeaf(box, fb.L, fb.G, terms);

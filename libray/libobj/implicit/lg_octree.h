@@ -19,7 +19,9 @@
 //          distance to an active skeleton (subdividing a cell small compared with its
 //          distance to the skeletons barely tightens L and G). dRatio = −1 never fires
 //          (≈ KB89).
-//   budget when the node memory would exceed memoryBudget → leaf, and one warning per tree.
+//   budget when the node memory would exceed memoryBudget, or the lattice values computed
+//          by the build (including those of cells later merged by heuristic 4) would take
+//          more than memoryBudget → leaf, and one warning per tree.
 //   patch  (Gascuel §3.4, patch octrees only) some neighbour's smallest contribution over
 //          the cell exceeds the own term's largest → Empty: no root in the cell can be
 //          accepted, so the tree only covers the part of the patch box where the own
@@ -102,7 +104,10 @@ struct OctreeSettings {
     // nor Full, leaves 16 bytes plus 4 bytes per entry of their active-term lists). A cell
     // subdivides only while one more internal node (at most 36 bytes) and eight leaves fit,
     // lists not counted, so the tree may overshoot the budget by that much (164 bytes) plus
-    // eight lists per level of the path being built.
+    // eight lists per level of the path being built. The build's table of lattice values
+    // (LatticeValueBytes per value) is held to the same budget: cells that heuristic 4
+    // merges cost it nothing in nodes, so without this bound a tree whose cells mostly
+    // merge (a long thin skeleton) could take unbounded time and memory to build.
     std::size_t memoryBudget = static_cast<std::size_t>(Limits().octreeBytes);
 
     // Search. Root accuracy and splitting floor, as object-space distances.
