@@ -58,7 +58,17 @@ class Progress {
     int last_ = -1;
 };
 
-void OnInterrupt(int) { rs::RequestStop(); }
+// The first SIGINT or SIGTERM asks the render to stop after the work items in progress
+// and save its state; a second one ends the process at once, unsaved (one work item can
+// take long, e.g. a pixel whose ray builds a large implicit octree).
+void OnInterrupt(int signalNumber) {
+    if (rs::StopRequested()) {
+        signal(signalNumber, SIG_DFL);
+        raise(signalNumber);
+        return;
+    }
+    rs::RequestStop();
+}
 
 // What identifies a render for continuing it: the command line and the scene file's bytes,
 // leaving out the options that cannot change the image (-c itself, threads, reporting).
