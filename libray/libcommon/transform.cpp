@@ -163,9 +163,12 @@ void TransformList::AppendAnimated(AnimatedStep step) {
 
 void TransformList::Append(const TransformList& other) {
     if (!other.steps_) return;
-    // Copied first: `other` may be this list.
-    const std::vector<Step> steps = other.steps_->steps;
-    for (const Step& s : steps) {
+    if (&other == this) {  // appending iterates the steps it grows: go through a copy
+        const TransformList copy = other;
+        Append(copy);
+        return;
+    }
+    for (const Step& s : other.steps_->steps) {
         if (s.animated)
             AppendAnimated(s.animated);
         else
