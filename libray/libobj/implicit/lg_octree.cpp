@@ -73,7 +73,7 @@ int ChildIndexOf(const Bounds3& box, const Vec3& p) {
 class RaySearch {
   public:
     RaySearch(const LGOctree& tree, const Ray& ray, double tMin, double tMax,
-              const std::function<bool(double)>& accept)
+              const LGOctree::RootFilter& accept)
         : tree_(tree),
           s_(tree.Settings()),
           ray_(ray),
@@ -116,15 +116,39 @@ class RaySearch {
     std::optional<double> result;
 
   private:
-    bool Candidate(double t) {
+    // A sign change of g in [a, b], with its end values.
+    struct Bracket {
+        double a, ga, b, gb;
+    };
+
+    // A candidate root at t, within uncertaintyT of a sign change of g in `bracket`, or with
+    // no bracket to narrow (an exact zero of g).
+    bool Candidate(double t, double uncertaintyT, const Bracket* bracket) {
         if (!(t > tMin_ && t < tMax_)) return false;
-        if (accept_ && !accept_(t)) {
+        using Verdict = LGOctree::RootVerdict;
+        Verdict verdict = accept_ ? accept_(t, uncertaintyT) : Verdict::Accept;
+        if (verdict == Verdict::Undecided && bracket) {
+            const double fineT = LGOctree::kFineRootTolerance *
+                                 std::max(std::abs(bracket->a), std::abs(bracket->b));
+            auto f = [this](double s) { return G(s); };
+            std::optional<RootResult> fine = RiddersRoot(f, bracket->a, bracket->ga, bracket->b,
+                                                         bracket->gb, fineT, kFineIterations);
+            if (fine && fine->root > tMin_ && fine->root < tMax_) {
+                t = fine->root;
+                verdict = accept_(t, fineT);
+            }
+        }
+        if (verdict == Verdict::Reject) {
             Count(Counters().rejectedRoots);
             return false;
         }
         result = t;
         return true;
     }
+    // Ridders' iterations allowed to narrow a tolerance-wide bracket to a few ulps: it at
+    // least halves the bracket each iteration, and 2^-60 covers any tolerance down to the
+    // ulps of t (it converges in a handful on simple roots).
+    static constexpr int kFineIterations = 60;
 
     bool Ridders(double a, double ga, double b, double gb) {
         if (tree_.OwnExcluded(Bounds3(ray_.At(a), ray_.At(b)), terms_)) {
@@ -141,7 +165,10 @@ class RaySearch {
             if (!r) return false;
         }
         Count(Counters().riddersIterations, r->iterations);
-        return Candidate(r->root);
+        // Both solvers stop on a bracket of width <= tolT_ around a sign change
+        // (root_finding.h), or on an exact zero.
+        const Bracket bracket{a, ga, b, gb};
+        return Candidate(r->root, tolT_, &bracket);
     }
 
     bool Floor(double a, double ga, double b, double gb) {
@@ -153,7 +180,9 @@ class RaySearch {
         double gm = G(m);
         if (Inside(gm) != Inside(ga) || gm == 0) {
             Count(Counters().floorRoots);
-            return Candidate(m);
+            // g changes class in [a, m], so m is within m − a of a sign change.
+            const Bracket bracket{a, ga, m, gm};
+            return Candidate(m, m - a, &bracket);
         }
         Count(Counters().unresolved);
         return false;
@@ -164,7 +193,7 @@ class RaySearch {
         double lambda = b - a;
         if (s_.useTest0bis && ga == 0) {
             Count(Counters().test0bis);
-            if (Candidate(a)) return true;
+            if (Candidate(a, 0, nullptr)) return true;
         }
         if (lambda <= floorT_) return Floor(a, ga, b, gb);
         if (!(gt * lambda <= 2 * lt)) {
@@ -221,7 +250,7 @@ class RaySearch {
     const OctreeSettings& s_;
     Ray ray_;
     double tMin_, tMax_;
-    const std::function<bool(double)>& accept_;
+    const LGOctree::RootFilter& accept_;
     double dirLength_;
     double fixedTolT_, fixedFloorT_;  // the fixed tolerance and floor, in units of t
     bool adaptive_;                   // automatic accuracy on a ray with a footprint
@@ -688,7 +717,7 @@ CellClass LGOctree::Classify(const Vec3& p) const {
 }
 
 std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tMax,
-                                          const std::function<bool(double)>& accept) const {
+                                          const RootFilter& accept) const {
     if (LengthSquared(ray.dir) == 0 || !(tMax > tMin)) return std::nullopt;
     // The leaf box first: most rays reaching a patch's box miss its leaves. A ray meeting
     // the leaf box only outside the root box meets no leaf either way (leaves lie in it).
@@ -708,8 +737,19 @@ LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSett
 
 std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,
                                      const Ray& ray, double tMin, double tMax) {
-    return octree.FirstRoot(ray, tMin, tMax,
-                            [&](double t) { return patch.Predominates(ray.At(t)); });
+    const double dirLength = Length(ray.dir);
+    const double originLength = Length(ray.origin);
+    return octree.FirstRoot(ray, tMin, tMax, [&](double t, double uncertaintyT) {
+        using Verdict = LGOctree::RootVerdict;
+        const Vec3 p = ray.At(t);
+        if (patch.Predominates(p)) return Verdict::Accept;
+        // The computed point lies within uncertaintyT·|d| of the true root's point, plus
+        // the rounding of o + t·d (a few ulps of |o| + |t|·|d|).
+        const double uncertainty =
+            uncertaintyT * dirLength +
+            Patch::kPositionRounding * (originLength + std::abs(t) * dirLength);
+        return patch.PredominatesNear(p, uncertainty) ? Verdict::Undecided : Verdict::Reject;
+    });
 }
 
 }  // namespace rs

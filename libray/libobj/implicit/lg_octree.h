@@ -193,10 +193,25 @@ class LGOctree {
     bool OwnExcluded(const Bounds3& box, std::span<const int32_t> terms) const;
     static constexpr double kExclusionMargin = 1e-9;
 
+    // What a root filter says of a candidate root at t, known to be within uncertaintyT
+    // (parameter units) of a true sign change of g.
+    enum class RootVerdict {
+        Reject,
+        Accept,
+        // Acceptable only within the uncertainty: FirstRoot narrows the root's bracket to
+        // the rounding of t (kFineRootTolerance) and asks again; a root still undecided
+        // there is kept, and its refined t returned.
+        Undecided,
+    };
+    using RootFilter = std::function<RootVerdict(double t, double uncertaintyT)>;
+    // The bracket width FirstRoot narrows an undecided root to, relative to |t|: a few ulps.
+    static constexpr double kFineRootTolerance = 4 * 0x1p-52;
+
     // The first t in (tMin, tMax) where g changes sign along the ray (to the tolerance) and
-    // `accept(t)` holds; rejected roots are skipped and the search continues past them.
+    // `accept` does not reject; rejected roots are skipped and the search continues past
+    // them.
     std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax,
-                                    const std::function<bool(double)>& accept = {}) const;
+                                    const RootFilter& accept = {}) const;
 
     int InternalCount() const { return internalCount_; }
     int LeafCount() const { return static_cast<int>(leaves_.size()); }
@@ -306,8 +321,12 @@ CounterId RiddersIterationCounter();
 LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings);
 
 // The first root of a patch along the ray in (tMin, tMax): a root of the patch field where
-// the patch's own term predominates (patch.h), continuing past rejected roots. `octree`
-// must come from BuildPatchOctree(patch, ...).
+// the patch's own term predominates (patch.h), continuing past rejected roots. The seam
+// rule (README.md, "Patches"): a root where the own term predominates only within the
+// root's positional uncertainty (Patch::PredominatesNear) is narrowed to the rounding of t
+// and tested again there, and kept if it still passes within that rounding, so a root on
+// the seam between two patches is never rejected by both. `octree` must come from
+// BuildPatchOctree(patch, ...).
 std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,
                                      const Ray& ray, double tMin, double tMax);
 

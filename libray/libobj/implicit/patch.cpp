@@ -19,13 +19,32 @@ Patch::Patch(const Field& object, std::vector<int> members)
     : field_(object.Subset(std::move(members))),
       box_(TermSupportBounds(object.Terms()[field_.Rows().front()])) {}
 
-bool Patch::Predominates(const Vec3& p) const {
+namespace {
+
+// |w|·max|f'|: the term's Lipschitz constant in space.
+double TermLipschitz(const FieldTerm& term) {
+    const Kernel& k = term.kernel;
+    return std::abs(term.weight) * k.Bounds(0, k.Radius()).maxSlope;
+}
+
+}  // namespace
+
+bool Patch::PredominatesNear(const Vec3& p, double uncertainty) const {
     const std::vector<int>& members = field_.Rows();
     const int ownIndex = members.front();
     const double own = field_.TermValue(ownIndex, p);
+    double ownLipschitz = -1;  // computed on first need: most points have no close rival
     for (size_t j = 1; j < members.size(); ++j) {
-        double other = field_.TermValue(members[j], p);
-        if (other > own || (other == own && members[j] < ownIndex)) return false;
+        const double other = field_.TermValue(members[j], p);
+        if (other < own || (other == own && members[j] > ownIndex)) continue;
+        // An exact tie keeps its rule (the lowest index wins), so a point computed on a
+        // seam still belongs to one patch; only a strictly larger rival is weighed.
+        if (other == own || !(uncertainty > 0)) return false;
+        if (ownLipschitz < 0) ownLipschitz = TermLipschitz(field_.Terms()[ownIndex]);
+        const double slack = (ownLipschitz + TermLipschitz(field_.Terms()[members[j]])) *
+                                 uncertainty +
+                             kValueRounding * (std::abs(other) + std::abs(own));
+        if (other - own > slack) return false;
     }
     return true;
 }

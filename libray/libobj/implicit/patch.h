@@ -47,7 +47,21 @@ class Patch {
     const Bounds3& Box() const { return box_; }
 
     // Whether the own term predominates at p (ties to the lowest term index).
-    bool Predominates(const Vec3& p) const;
+    bool Predominates(const Vec3& p) const { return PredominatesNear(p, 0); }
+    // The seam rule: whether the own term may predominate at some point within distance
+    // `uncertainty` of p, i.e. for every neighbour j
+    //     c_j(p) − c_own(p) <= (λ_own + λ_j)·uncertainty + κ,
+    // with λ_i = |w_i|·max|f_i'| term i's Lipschitz constant in space (distances to a
+    // skeleton are 1-Lipschitz) and κ = kValueRounding·(|c_j| + |c_own|) the rounding of
+    // the two values; an exact tie (c_j == c_own) keeps the tie rule. So a root found
+    // within `uncertainty` of a true root where the own term predominates is never
+    // rejected, at a seam between patches or anywhere else; a root accepted by two patches
+    // near their seam is harmless (the nearest one wins, and both lie within the
+    // uncertainty of the surface). uncertainty = 0: exact predominance.
+    bool PredominatesNear(const Vec3& p, double uncertainty) const;
+    // Relative rounding of a computed point o + t·d (of |o| + |t|·|d|) and of a term value:
+    // a few ulps, generously.
+    static constexpr double kPositionRounding = 8 * 0x1p-52, kValueRounding = 8 * 0x1p-52;
     // False only when the ray's piece (tMin, tMax) surely misses the own term's support
     // {d < R}, where no root can be accepted (the own term is 0 there; see Box()), so the
     // patch's search may be skipped, and its tree left unbuilt. Point skeletons test the
