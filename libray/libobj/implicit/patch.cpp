@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
 
 namespace rs {
 
@@ -83,6 +85,118 @@ bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {
     return true;
 }
 
+namespace {
+
+// The automatic neighbour candidates of every term: a uniform grid of cell edge W per axis,
+// W the largest support extent along that axis, each support box filed under the cell of
+// its low corner. Two boxes overlap only if their low corners differ by at most W per axis,
+// i.e. their cells are equal or adjacent, so the 27 cells around a box's own hold every box
+// it may overlap: O(n·k) for k boxes per cell neighbourhood instead of all n² pairs. The
+// occupied cells are found through an open-addressing hash of their coordinates.
+class NeighbourGrid {
+  public:
+    explicit NeighbourGrid(const std::vector<Bounds3>& support) {
+        const double inf = std::numeric_limits<double>::infinity();
+        origin_ = {inf, inf, inf};
+        for (const Bounds3& b : support) {
+            if (b.IsEmpty()) continue;
+            width_ = Max(width_, b.hi - b.lo);
+            origin_ = Min(origin_, b.lo);
+        }
+        std::vector<std::pair<Cell, int>> filed;
+        filed.reserve(support.size());
+        for (size_t i = 0; i < support.size(); ++i) {
+            if (!support[i].IsEmpty()) filed.emplace_back(CellOf(support[i].lo), static_cast<int>(i));
+        }
+        std::sort(filed.begin(), filed.end());
+        members_.reserve(filed.size());
+        for (size_t k = 0; k < filed.size(); ++k) {
+            if (k == 0 || filed[k].first != filed[k - 1].first) {
+                ranges_.push_back({filed[k].first, static_cast<int>(k), 0});
+            }
+            members_.push_back(filed[k].second);
+            ranges_.back().end = static_cast<int>(k) + 1;
+        }
+        size_t capacity = 16;
+        while (capacity < 2 * ranges_.size()) capacity *= 2;
+        slots_.assign(capacity, -1);
+        for (size_t r = 0; r < ranges_.size(); ++r) {
+            size_t slot = Hash(ranges_[r].cell) & (capacity - 1);
+            while (slots_[slot] >= 0) slot = (slot + 1) & (capacity - 1);
+            slots_[slot] = static_cast<int>(r);
+        }
+    }
+
+    // Calls visit(j) for every term j filed in the 27 cells around the cell of `lo`.
+    template <class Visit>
+    void ForEachNear(const Vec3& lo, Visit&& visit) const {
+        const Cell c = CellOf(lo);
+        for (long long dx = -1; dx <= 1; ++dx) {
+            for (long long dy = -1; dy <= 1; ++dy) {
+                for (long long dz = -1; dz <= 1; ++dz) {
+                    const Range* range = Find({c[0] + dx, c[1] + dy, c[2] + dz});
+                    if (!range) continue;
+                    for (int k = range->begin; k < range->end; ++k) visit(members_[k]);
+                }
+            }
+        }
+    }
+
+  private:
+    using Cell = std::array<long long, 3>;
+    struct Range {
+        Cell cell;
+        int begin, end;  // members_[begin, end) lie in the cell
+    };
+
+    // Cell coordinates are clamped to ±2^60, so that they and their neighbours' keys stay
+    // integers for supports of absurd spread (coordinates of 1e64 and beyond): clamping is
+    // monotone, so boxes in equal or adjacent cells stay so. An axis whose widest support is
+    // not finite has one cell, as does one of zero width; a NaN quotient (infinite supports)
+    // goes to cell 0.
+    Cell CellOf(const Vec3& p) const {
+        constexpr double kMaxCell = 0x1p60;
+        Cell c{};
+        for (int a = 0; a < 3; ++a) {
+            if (!(width_[a] > 0 && std::isfinite(width_[a]))) continue;
+            const double q = std::floor((p[a] - origin_[a]) / width_[a]);
+            c[a] = std::isnan(q) ? 0 : static_cast<long long>(std::clamp(q, -kMaxCell, kMaxCell));
+        }
+        return c;
+    }
+    static size_t Hash(const Cell& c) {
+        uint64_t h = 0x9e3779b97f4a7c15ull;
+        for (long long v : c) {
+            h ^= static_cast<uint64_t>(v) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+            h *= 0xbf58476d1ce4e5b9ull;
+        }
+        return static_cast<size_t>(h ^ (h >> 31));
+    }
+    const Range* Find(const Cell& c) const {
+        for (size_t slot = Hash(c) & (slots_.size() - 1);; slot = (slot + 1) & (slots_.size() - 1)) {
+            const int r = slots_[slot];
+            if (r < 0) return nullptr;
+            if (ranges_[r].cell == c) return &ranges_[r];
+        }
+    }
+
+    Vec3 width_{0, 0, 0}, origin_;
+    std::vector<int> members_;  // term indices, grouped by cell
+    std::vector<Range> ranges_;
+    std::vector<int> slots_;  // indices into ranges_, −1 empty; at most half full
+};
+
+// Symmetric pairs as a sorted list of (low, high), for binary search.
+std::vector<std::pair<int, int>> SortedPairs(const std::vector<std::pair<int, int>>& pairs) {
+    std::vector<std::pair<int, int>> sorted;
+    sorted.reserve(pairs.size());
+    for (auto [a, b] : pairs) sorted.emplace_back(std::min(a, b), std::max(a, b));
+    std::sort(sorted.begin(), sorted.end());
+    return sorted;
+}
+
+}  // namespace
+
 std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
                                 const std::vector<std::pair<int, int>>& blendPairs,
                                 const std::vector<std::pair<int, int>>& separatePairs) {
@@ -90,88 +204,48 @@ std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
     const int n = static_cast<int>(terms.size());
     std::vector<Bounds3> support(n);
     for (int i = 0; i < n; ++i) support[i] = TermSupportBounds(terms[i]);
-    // Candidate neighbours: in Explicit mode the declared partners, otherwise every term
-    // whose support box overlaps (found through a uniform grid, below).
-    std::vector<std::vector<int>> candidates(n);
+    // Explicit mode: the declared partners of each term; automatic: the grid above.
+    std::vector<std::vector<int>> declared;
+    std::optional<NeighbourGrid> grid;
     if (mode == BlendMode::Explicit) {
+        declared.resize(n);
         for (auto [a, b] : blendPairs) {
             if (a < 0 || b < 0 || a >= n || b >= n || a == b) continue;
-            candidates[a].push_back(b);
-            candidates[b].push_back(a);
+            declared[a].push_back(b);
+            declared[b].push_back(a);
         }
     } else {
-        // Grid of cell edge W per axis, W the largest support extent along that axis, each
-        // box filed under the cell of its low corner. Two boxes overlap only if their low
-        // corners differ by at most W per axis, i.e. their cells are equal or adjacent, so
-        // the 27 cells around a box's own hold every box it may overlap. Cost O(n·k) for k
-        // boxes per cell neighbourhood, instead of testing all n² pairs.
-        const double inf = std::numeric_limits<double>::infinity();
-        Vec3 width{0, 0, 0}, origin{inf, inf, inf};
-        for (const Bounds3& b : support) {
-            if (b.IsEmpty()) continue;
-            width = Max(width, b.hi - b.lo);
-            origin = Min(origin, b.lo);
-        }
-        // Cell coordinates are clamped to ±2^60, so that they and their neighbours' keys
-        // stay integers for supports of absurd spread (coordinates of 1e64 and beyond):
-        // clamping is monotone, so boxes in equal or adjacent cells stay so. An axis whose
-        // widest support is not finite has one cell, as does one of zero width; a NaN
-        // quotient (infinite supports) goes to cell 0.
-        constexpr double kMaxCell = 0x1p60;
-        auto cellOf = [&](const Vec3& p) {
-            std::array<long long, 3> c{};
-            for (int a = 0; a < 3; ++a) {
-                if (!(width[a] > 0 && std::isfinite(width[a]))) continue;
-                const double q = std::floor((p[a] - origin[a]) / width[a]);
-                c[a] = std::isnan(q) ? 0
-                                     : static_cast<long long>(std::clamp(q, -kMaxCell, kMaxCell));
-            }
-            return c;
-        };
-        std::vector<std::pair<std::array<long long, 3>, int>> cells;
-        cells.reserve(n);
-        for (int i = 0; i < n; ++i) {
-            if (!support[i].IsEmpty()) cells.emplace_back(cellOf(support[i].lo), i);
-        }
-        std::sort(cells.begin(), cells.end());
-        for (int i = 0; i < n; ++i) {
-            if (!(terms[i].weight > 0) || support[i].IsEmpty()) continue;
-            const std::array<long long, 3> c = cellOf(support[i].lo);
-            for (long long dx = -1; dx <= 1; ++dx) {
-                for (long long dy = -1; dy <= 1; ++dy) {
-                    for (long long dz = -1; dz <= 1; ++dz) {
-                        std::array<long long, 3> key{c[0] + dx, c[1] + dy, c[2] + dz};
-                        auto lo = std::lower_bound(
-                            cells.begin(), cells.end(), key,
-                            [](const auto& e, const std::array<long long, 3>& k) {
-                                return e.first < k;
-                            });
-                        for (auto it = lo; it != cells.end() && it->first == key; ++it) {
-                            candidates[i].push_back(it->second);
-                        }
-                    }
-                }
-            }
-        }
+        grid.emplace(support);
     }
-    auto separate = [&separatePairs](int i, int j) {
-        for (auto [a, b] : separatePairs) {
-            if ((a == i && b == j) || (a == j && b == i)) return true;
-        }
-        return false;
+    const std::vector<std::pair<int, int>> separate = SortedPairs(separatePairs);
+    auto keep = [&](int i, int j) {
+        return j != i && BoxesOverlap(support[i], support[j]) &&
+               !std::binary_search(separate.begin(), separate.end(),
+                                   std::pair<int, int>(std::min(i, j), std::max(i, j)));
     };
     std::vector<Patch> patches;
+    std::vector<int> near;
     for (int i = 0; i < n; ++i) {
         if (!(terms[i].weight > 0)) continue;
-        // Neighbours in increasing term order (the order of the patch field's sum).
-        std::vector<int>& c = candidates[i];
-        std::sort(c.begin(), c.end());
-        c.erase(std::unique(c.begin(), c.end()), c.end());
-        std::vector<int> members{i};
-        for (int j : c) {
-            if (j == i || !BoxesOverlap(support[i], support[j]) || separate(i, j)) continue;
-            members.push_back(j);
+        near.clear();
+        if (grid) {
+            if (!support[i].IsEmpty()) {
+                grid->ForEachNear(support[i].lo, [&](int j) {
+                    if (keep(i, j)) near.push_back(j);
+                });
+            }
+        } else {
+            for (int j : declared[i]) {
+                if (keep(i, j)) near.push_back(j);
+            }
         }
+        // Neighbours in increasing term order (the order of the patch field's sum), once.
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+        std::vector<int> members;
+        members.reserve(near.size() + 1);
+        members.push_back(i);
+        members.insert(members.end(), near.begin(), near.end());
         patches.emplace_back(object, std::move(members));
     }
     return patches;
