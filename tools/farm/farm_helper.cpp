@@ -51,6 +51,7 @@ int Plan(const std::vector<std::string>& args) {
     rs::CommandLine cl;
     std::string error;
     if (!rs::ParseCommandLine(args, cl, error)) rs::Report(rs::Severity::Abort, {}, "%s", error.c_str());
+    gQuiet = cl.options.quiet;  // -q: warnings are dropped, as rayshade drops them
     rs::ParseInput input;
     input.path = cl.inputFile;
     input.useCpp = cl.useCpp;
