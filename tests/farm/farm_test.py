@@ -175,6 +175,10 @@ def case_errors():
     r = farm("submit", "--farm-dir", os.path.join(ARGS.work, "a file", "farm"), "--", *STILL, "-O", "e.png",
              scene("balls.ray"), expect=1)
     check("cannot use the farm directory" in r.stdout, "an unusable farm directory is not reported")
+    # A farm directory holding another render is not reused.
+    farm("submit", "--", "-R", "8", "6", "-O", "small.png", scene("balls.ray"))
+    r = farm("submit", "--", "-R", "8", "7", "-O", "small.png", scene("balls.ray"), expect=1)
+    check("holds a different render" in r.stdout, "a farm directory of another render was reused")
     if ARGS.mode == "slurm":
         r = farm("submit", "--partition", "no-such-partition", "--", *STILL, "-O", "e.png", scene("balls.ray"),
                  expect=1)
