@@ -89,14 +89,19 @@ def case_tiles():
 
 
 def case_frames():
-    """Frames 0-7 of coin.ray in chunks of 3 (with 2x1 tiles) equal single-process frames."""
+    """Frames 0-7 of coin.ray in chunks of 3 (with 2x1 tiles, 2 CPUs per task, one task at a
+    time) equal single-process frames."""
     common = ["-R", "40", "30", "-S", "2"]
     rayshade(*common, "-A", "0", "-N", "8", "-O", "ref.png", scene("coin.ray"))
-    farm("submit", "--frames", "0-7", "--chunk", "3", "--tiles", "2x1", "--", *common, "-O", "coin.png",
-         scene("coin.ray"))
+    farm("submit", "--frames", "0-7", "--chunk", "3", "--tiles", "2x1", "--cpus-per-task", "2", "--max-running", "1",
+         "--", *common, "-O", "coin.png", scene("coin.ray"))
     for f in range(8):
         check(same_file(os.path.join(ARGS.work, f"coin_f{f:03d}.png"), os.path.join(ARGS.work, f"ref_f{f:03d}.png")),
               f"frame {f} differs from the single-process render")
+    # Chunks 0-2, 3-5, 6-7, two tiles each; each task renders with the CPUs it was given.
+    fd = os.path.join(ARGS.work, "coin.png.farm")
+    check(all(" -A 6 -N 2 " in attempts(fd, i)[0] and " -t 2 " in attempts(fd, i)[0] for i in (4, 5)),
+          "the last chunk's tasks do not render frames 6-7 with 2 threads")
 
 
 def case_fault():
