@@ -146,7 +146,7 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
                             CheckpointFn checkpoint, double checkpointSeconds) {
     frame_ = frame;
     frameTime_ = frameTime;
-    if (!WindowIsScreen()) return RenderSubWindow(withAlpha, resumeFrom, checkpoint);
+    if (!WindowIsScreen()) return RenderSubWindow(withAlpha, resumeFrom, checkpoint, checkpointSeconds);
     const int w = window_.Width(), h = window_.Height();
     // One extra row below the window is sampled for the contrast test of the last row
     // (spec §3.3) but never written.

@@ -145,7 +145,8 @@ class Renderer {
     // A window smaller than the screen (window_render.cpp): supersamples exactly the pixels
     // the full-screen render supersamples there, so tiles paste into the full image.
     bool WindowIsScreen() const;
-    Image RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const CheckpointFn& checkpoint);
+    Image RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const CheckpointFn& checkpoint,
+                          double checkpointSeconds);
     Image Encode(const FrameState& state, bool withAlpha) const;
     const Scene& scene_;
     const RenderOptions& options_;

@@ -19,9 +19,10 @@
 // run again; a region that covers the screen has no unknown pixels. In smooth parts of the
 // picture every combination agrees, so the uncertainty stays within a few pixels of R's edge.
 //
-// A stop request saves an empty state: a window continued with -c starts again (windows are
-// small; a saved window state would need the region's three-valued states).
+// The saved state of a window in progress holds the region's samples taken so far; a window
+// continued with -c takes only the missing ones and runs the passes again from them.
 #include <algorithm>
+#include <chrono>
 #include <utility>
 #include <vector>
 
@@ -56,21 +57,11 @@ bool Renderer::WindowIsScreen() const {
            window_.maxY == options_.yres - 1;
 }
 
-Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const CheckpointFn& checkpoint) {
+Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const CheckpointFn& checkpoint,
+                                double checkpointSeconds) {
     const int w = window_.Width(), h = window_.Height();
     const int xres = options_.xres, yres = options_.yres;
-    FrameState state;
-    state.frame = frame_;
-    state.width = w;
-    state.rows = h + 1;
-    state.pixels.assign(static_cast<size_t>(w) * (h + 1), Pixel{});
-    if (resumeFrom && resumeFrom->phase == FrameState::Phase::Done) state = std::move(*resumeFrom);
-    // A stop saves the state as it is: nothing sampled yet.
-    auto stopIfAsked = [&] {
-        if (!StopRequested()) return;
-        if (checkpoint) checkpoint(state, true);
-        throw RenderStopped{};
-    };
+    if (resumeFrom && resumeFrom->phase == FrameState::Phase::Done) return Encode(*resumeFrom, withAlpha);
     const long totalWork = static_cast<long>(w) * h * 2;
 
     // The full render's rules: which pixels start supersampled, which are tested.
@@ -80,11 +71,46 @@ Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const Ch
     // With one sample per pixel the full render supersamples nothing: the window is its
     // single samples (a margin of zero, no passes).
     const bool adaptive = pattern_.Cells() > 1;
-    for (int margin = adaptive ? kFirstMargin : 0; state.phase != FrameState::Phase::Done; margin *= kMarginGrowth) {
+    int margin = adaptive ? kFirstMargin : 0;
+    // A saved state of a window in progress: the region's samples (see `region` below),
+    // its margin in `pass`. Decisions are not saved; they are found again from the samples
+    // without tracing.
+    if (resumeFrom && resumeFrom->phase == FrameState::Phase::SingleSamples && resumeFrom->pass > margin)
+        margin = resumeFrom->pass;
+    for (;; margin *= kMarginGrowth) {
         const Region r{std::max(0, window_.minX - margin), std::min(xres - 1, window_.maxX + margin),
                        std::max(0, window_.minY - margin), std::min(yres, window_.maxY + 1 + margin)};
         const int rw = r.Width(), rh = r.Height();
+        const long n = static_cast<long>(rw) * rh;
         const bool wholeScreen = r.x0 == 0 && r.y0 == 0 && r.x1 == xres - 1 && r.y1 == yres;
+        // The region's single samples (pixels [0, n), marked `sampled` once taken) and its
+        // supersampled values (pixels [n, 2n), marked `supersampled`): the state a stop or
+        // a checkpoint saves.
+        FrameState region;
+        if (resumeFrom && resumeFrom->phase == FrameState::Phase::SingleSamples && resumeFrom->pass == margin &&
+            resumeFrom->width == rw && resumeFrom->rows == 2 * rh) {
+            region = std::move(*resumeFrom);
+        } else {
+            region.frame = frame_;
+            region.width = rw;
+            region.rows = 2 * rh;
+            region.pass = margin;
+            region.pixels.assign(static_cast<size_t>(2 * n), Pixel{});
+        }
+        Pixel* single = region.pixels.data();
+        Pixel* super = single + n;
+        auto lastCheckpoint = std::chrono::steady_clock::now();
+        auto safePoint = [&] {
+            if (StopRequested()) {
+                if (checkpoint) checkpoint(region, true);
+                throw RenderStopped{};
+            }
+            const auto now = std::chrono::steady_clock::now();
+            if (checkpoint && std::chrono::duration<double>(now - lastCheckpoint).count() >= checkpointSeconds) {
+                checkpoint(region, false);
+                lastCheckpoint = now;
+            }
+        };
         // Index of absolute (x, y) in the region's arrays.
         auto at = [&](int x, int y) { return static_cast<long>(y - r.y0) * rw + (x - r.x0); };
         // A pixel of R whose five-pixel neighbourhood leaves R: its own test and its
@@ -93,39 +119,40 @@ Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const Ch
             return (x == r.x0 && x > 0) || (x == r.x1 && x < xres - 1) || (y == r.y0 && y > 0) ||
                    (y == r.y1 && y < yres);
         };
-        std::vector<Pixel> single(static_cast<size_t>(rw) * rh, Pixel{});
-        std::vector<Pixel> super(single.size(), Pixel{});
-        std::vector<uint8_t> hasSuper(single.size(), 0);
-        std::vector<Decision> decision(single.size(), Decision::No);
-        std::vector<uint8_t> changed(single.size(), 1);  // since the last test (all, at first)
+        std::vector<Decision> decision(n, Decision::No);
+        std::vector<uint8_t> changed(n, 1);  // since the last test (all, at first)
+        if (adaptive) {
+            for (int y = r.y0; y <= r.y1; ++y)
+                for (int x = r.x0; x <= r.x1; ++x)
+                    decision[at(x, y)] = onScreenBorder(x, y) ? Decision::Yes
+                                         : atFakeEdge(x, y)   ? Decision::Maybe
+                                                              : Decision::No;
+        }
 
         // Sampling uses coordinates relative to the window, as the full-screen path does.
         ParallelFor(rh, [&](long i) {
             const int y = r.y0 + static_cast<int>(i);
             for (int x = r.x0; x <= r.x1; ++x) {
                 const long k = at(x, y);
-                TakeSingleSample(x - window_.minX, y - window_.minY, single[k]);
-                if (!adaptive) continue;
-                if (onScreenBorder(x, y)) decision[k] = Decision::Yes;
-                else if (atFakeEdge(x, y)) decision[k] = Decision::Maybe;
+                if (!single[k].sampled) TakeSingleSample(x - window_.minX, y - window_.minY, single[k]);
             }
         });
-        stopIfAsked();
+        safePoint();
         if (progress_) progress_(totalWork / 2, totalWork);
         auto supersampleDecided = [&] {
             ParallelFor(rh, [&](long i) {
                 const int y = r.y0 + static_cast<int>(i);
                 for (int x = r.x0; x <= r.x1; ++x) {
                     const long k = at(x, y);
-                    if (decision[k] == Decision::No || hasSuper[k]) continue;
-                    super[k] = single[k];
-                    Supersample(x - window_.minX, y - window_.minY, super[k]);
-                    hasSuper[k] = 1;
+                    if (decision[k] == Decision::No || super[k].supersampled) continue;
+                    Pixel px = single[k];
+                    Supersample(x - window_.minX, y - window_.minY, px);
+                    super[k] = px;
                 }
             });
         };
         supersampleDecided();
-        stopIfAsked();
+        safePoint();
 
         // The three-valued test of pixel (x, y) against the current decisions.
         auto test = [&](int x, int y) {
@@ -156,7 +183,7 @@ Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const Ch
 
         // Passes until no decision changes. Only pixels whose neighbourhood changed since
         // their last test are tested again (no other result can change).
-        std::vector<Decision> flag(single.size(), Decision::No);
+        std::vector<Decision> flag(n, Decision::No);
         for (bool any = adaptive; any;) {
             ParallelFor(rh, [&](long i) {
                 const int y = r.y0 + static_cast<int>(i);
@@ -167,11 +194,11 @@ Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const Ch
                     if (dirty) flag[at(x, y)] = test(x, y);
                 }
             });
-            stopIfAsked();
+            safePoint();
             // A pixel's decision rises to the strongest test result in its neighbourhood;
             // the pass reads the previous decisions, so the new ones go to a second array.
-            std::vector<Decision> raised(decision.size());
-            std::vector<uint8_t> next(decision.size(), 0);
+            std::vector<Decision> raised(n);
+            std::vector<uint8_t> next(n, 0);
             ParallelForAll(rh, [&](long i) {
                 const int y = r.y0 + static_cast<int>(i);
                 for (int x = r.x0; x <= r.x1; ++x) {
@@ -187,25 +214,29 @@ Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const Ch
             any = std::find(next.begin(), next.end(), 1) != next.end();
             changed = std::move(next);
             supersampleDecided();
-            stopIfAsked();
+            safePoint();
         }
 
         bool certain = true;
         for (int y = window_.minY; y <= window_.maxY && certain; ++y)
             for (int x = window_.minX; x <= window_.maxX; ++x)
-                if (r.Contains(x, y) && decision[at(x, y)] == Decision::Maybe) certain = false;
+                if (decision[at(x, y)] == Decision::Maybe) certain = false;
         if (!certain && !wholeScreen) continue;
-        state.pixels.assign(static_cast<size_t>(w) * (h + 1), Pixel{});
+        FrameState done;
+        done.frame = frame_;
+        done.width = w;
+        done.rows = h + 1;
+        done.phase = FrameState::Phase::Done;
+        done.pixels.assign(static_cast<size_t>(w) * (h + 1), Pixel{});
         for (int y = window_.minY; y <= window_.maxY; ++y)
             for (int x = window_.minX; x <= window_.maxX; ++x) {
                 const long k = at(x, y);
-                state.pixels[static_cast<size_t>(y - window_.minY) * w + (x - window_.minX)] =
+                done.pixels[static_cast<size_t>(y - window_.minY) * w + (x - window_.minX)] =
                     decision[k] == Decision::Yes ? super[k] : single[k];
             }
-        state.phase = FrameState::Phase::Done;
+        if (progress_) progress_(totalWork, totalWork);
+        return Encode(done, withAlpha);
     }
-    if (progress_) progress_(totalWork, totalWork);
-    return Encode(state, withAlpha);
 }
 
 }  // namespace rs

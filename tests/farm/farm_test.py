@@ -105,7 +105,7 @@ def case_frames():
 
 
 def case_fault():
-    """A tile that fails once is retried, a frame killed mid-render continues from its
+    """A tile that fails once is retried, a tile stopped mid-render continues from its
     partial state; with --retries 0 the failure is reported and nothing is merged; a
     second submit then renders only the failed task."""
     rayshade(*STILL, "-O", "reference.png", scene("balls.ray"))
@@ -117,17 +117,20 @@ def case_fault():
     check(len(attempts(os.path.join(ARGS.work, "retried.png.farm"), 1)) == 2, "the failing tile did not run twice")
     os.remove(env["FAULT_MARKER"])
 
-    # A whole frame stopped (SIGTERM) mid-render continues from its partial state with -c.
+    # A tile stopped (SIGTERM, as Slurm stops a preempted task) mid-render continues from
+    # its partial state with -c.
     big = ["-R", "160", "120", "-S", "4"]
     rayshade(*big, "-O", "big reference.png", scene("balls.ray"))
-    env = fault_env("kill", "-W 0 159 0 119")
-    farm("submit", "--rayshade", FAULTY, "--", *big, "-O", "big killed.png", scene("balls.ray"), env=env)
+    env = fault_env("kill", "-W 80 159 0 119")
+    farm("submit", "--tiles", "2x1", "--rayshade", FAULTY, "--", *big, "-O", "big killed.png", scene("balls.ray"),
+         env=env)
     check(same_file(os.path.join(ARGS.work, "big killed.png"), os.path.join(ARGS.work, "big reference.png")),
-          "after a killed and continued frame the image differs")
-    tries = attempts(os.path.join(ARGS.work, "big killed.png.farm"), 0)
-    check(len(tries) == 2 and tries[1].rstrip().endswith(" -c") and "partial state saved" in
-          open(os.path.join(ARGS.work, "big killed.png.farm", "tasks", "0", "log")).read(),
-          f"the killed frame's second attempt did not continue with -c: {tries}")
+          "after a stopped and continued tile the image differs")
+    tries = attempts(os.path.join(ARGS.work, "big killed.png.farm"), 1)
+    with open(os.path.join(ARGS.work, "big killed.png.farm", "tasks", "1", "log")) as f:
+        saved = "partial state saved" in f.read()
+    check(len(tries) == 2 and tries[1].rstrip().endswith(" -c") and saved,
+          f"the stopped tile's second attempt did not continue from a saved state with -c: {tries}")
     os.remove(env["FAULT_MARKER"])
 
     # --retries 0: the failed tile is reported, the merge does not run, status says so.

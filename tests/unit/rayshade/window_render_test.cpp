@@ -36,8 +36,10 @@ struct Window {
     int x0, x1, y0, y1;
 };
 
-// Renders frame 0 of `scene` (RGBA), the whole screen or only `window`.
-Image Render(const std::string& scene, int threads, const Window* window = nullptr) {
+// Renders frame 0 of `scene` (RGBA), the whole screen or only `window`; continues from
+// `resume` when given, and offers `checkpoint` the state at every safe point.
+Image Render(const std::string& scene, int threads, const Window* window = nullptr,
+             FrameState* resume = nullptr, CheckpointFn checkpoint = {}) {
     RenderOptions options;
     options.threads = threads;
     Scene s = ParseSceneText(scene, "window_test.ray", options);
@@ -50,7 +52,7 @@ Image Render(const std::string& scene, int threads, const Window* window = nullp
     SetCurrentFrame(0);
     s.world->PrepareFrame(s.options.startTime, s.options.shutter);
     Renderer renderer(s, nullptr);
-    return renderer.RenderFrame(0, s.options.startTime, true);
+    return renderer.RenderFrame(0, s.options.startTime, true, resume, std::move(checkpoint), 0);
 }
 
 // Renders `scene` as `columns` x `rows` tiles of (nearly) equal size and pastes them.
@@ -135,6 +137,25 @@ TEST(WindowRender, EveryWindowIsThatPartOfTheFullRender) {
         }
     }
     EXPECT_EQ(differing, 0);
+}
+
+TEST(WindowRender, ContinuingFromASavedStateGivesTheSameWindow) {
+    // A window's state saved at any safe point (here: every one, the checkpoint interval is
+    // 0) continues to the image of an uninterrupted render; the states hold the samples
+    // taken so far.
+    const std::string scene = "screen 48 36 sample 4 jitter\n" + kWorld;
+    const Window w{10, 29, 6, 21};
+    std::vector<FrameState> saved;
+    const Image whole = Render(scene, 2, &w, nullptr, [&](const FrameState& state, bool) { saved.push_back(state); });
+    ASSERT_GE(saved.size(), 3u);
+    for (size_t i : {size_t{0}, size_t{1}, saved.size() / 2, saved.size() - 1}) {
+        FrameState state = saved[i];
+        EXPECT_EQ(state.phase, FrameState::Phase::SingleSamples);
+        long sampled = 0;
+        for (const PixelState& px : state.pixels) sampled += px.sampled;
+        EXPECT_GT(sampled, 0) << "state " << i;
+        EXPECT_EQ(DifferingPixels(Render(scene, 2, &w, &state), whole), 0) << "state " << i;
+    }
 }
 
 }  // namespace
