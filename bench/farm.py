@@ -4,7 +4,7 @@
 1. Wall time of one scene (about 30 s on one core) rendered by one rayshade process on one
    core, by one process on every core, by 4 local farm tasks (2x2 tiles) and by 4 Slurm
    tasks on a single-node test cluster; each farm image is checked identical to the
-   one-process image.
+   one-process image. CPU times are printed too (wall times on a shared machine are noisy).
 2. The farm's own cost: the time from submit to the first task's start, and the overhead
    per task, measured with tasks that render almost nothing (2x1-pixel tiles): the farm's
    wall time times the number of tasks running at once, divided by the number of tasks.
@@ -15,6 +15,7 @@
 import argparse
 import json
 import os
+import resource
 import shutil
 import subprocess
 import sys
@@ -25,10 +26,21 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
 
+def children_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def run(command, **kw):
-    start = time.perf_counter()
+    """Wall seconds of `command`; its CPU seconds (and its children's) go to LAST_CPU."""
+    global LAST_CPU
+    start, cpu = time.perf_counter(), children_cpu()
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL, **kw)
+    LAST_CPU = children_cpu() - cpu
     return time.perf_counter() - start
+
+
+LAST_CPU = 0.0
 
 
 def same(a, b):
@@ -72,12 +84,14 @@ def main():
         render = ["-q", "-R", w, h, scene]
         print(f"scene {os.path.basename(scene)} at {w}x{h}, {cores} cores")
         t1 = run([rayshade, "-t", "1", "-O", os.path.join(work, "one.png")] + render)
-        print(f"  one process, 1 thread:             {t1:7.2f} s")
+        print("  (wall time; CPU time of the processes started here, which does not count the Slurm tasks:\n"
+              "   on a busy machine compare CPU times)")
+        print(f"  one process, 1 thread:             {t1:7.2f} s   CPU {LAST_CPU:7.2f} s")
         tn = run([rayshade, "-O", os.path.join(work, "all.png")] + render)
-        print(f"  one process, {cores} threads:            {tn:7.2f} s")
+        print(f"  one process, {cores} threads:            {tn:7.2f} s   CPU {LAST_CPU:7.2f} s")
         tl = run([sys.executable, farm, "submit", "--local", "--tiles", "2x2", "--"] + render[:-1] +
                  ["-O", os.path.join(work, "local.png"), scene], env={k: v for k, v in env.items() if k != "SLURM_CONF"})
-        print(f"  4 local tasks (2x2 tiles, {cores} at once): {tl:7.2f} s   identical: "
+        print(f"  4 local tasks (2x2 tiles, {cores} at once): {tl:7.2f} s   CPU {LAST_CPU:7.2f} s   identical: "
               f"{'yes' if same(os.path.join(work, 'local.png'), os.path.join(work, 'one.png')) else 'NO'}")
         if cluster:
             ts = run([sys.executable, farm, "submit", "--wait", "--tiles", "2x2", "--"] + render[:-1] +
