@@ -15,8 +15,9 @@
 // their two possible values: the decision is certain when all combinations agree. Pass by
 // pass, every true state of the full render is one the three-valued state allows (the
 // abstraction is sound), so when the passes end and no pixel of the window is "maybe", the
-// window's set is exactly the full render's. Otherwise the margin grows and the region is
-// run again; a region that covers the screen has no unknown pixels. In smooth parts of the
+// window's set is exactly the full render's. Otherwise the margin grows and the passes run
+// again on the larger region, from the samples already taken; a region that covers the
+// screen has no unknown pixels. In smooth parts of the
 // picture every combination agrees, so the uncertainty stays within a few pixels of R's edge.
 //
 // The saved state of a window in progress holds the region's samples taken so far; a window
@@ -34,9 +35,12 @@ namespace {
 
 enum class Decision : uint8_t { No = 0, Maybe = 1, Yes = 2 };
 
-// Margin of the first attempt, in pixels, and the factor it grows by.
-constexpr int kFirstMargin = 8;
-constexpr int kMarginGrowth = 4;
+// Margin of the first attempt, in pixels, and the factor it grows by. Samples carry over
+// to the next attempt, so a small first margin costs little when it is not enough; every
+// margin pixel costs its samples (often its full supersampling, as "maybe" pixels are
+// supersampled to test both values), so a small margin keeps a tile's extra work low.
+constexpr int kFirstMargin = 2;
+constexpr int kMarginGrowth = 2;
 
 // A pixel and its four neighbours, as offsets.
 constexpr std::pair<int, int> kFive[5] = {{0, 0}, {-1, 0}, {1, 0}, {0, -1}, {0, 1}};
@@ -77,6 +81,9 @@ Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const Ch
     // without tracing.
     if (resumeFrom && resumeFrom->phase == FrameState::Phase::SingleSamples && resumeFrom->pass > margin)
         margin = resumeFrom->pass;
+    // The samples of the previous, smaller attempt (its region's pixels, see `region`).
+    FrameState carried;
+    Region carriedRegion{0, -1, 0, -1};
     for (;; margin *= kMarginGrowth) {
         const Region r{std::max(0, window_.minX - margin), std::min(xres - 1, window_.maxX + margin),
                        std::max(0, window_.minY - margin), std::min(yres, window_.maxY + 1 + margin)};
@@ -99,6 +106,18 @@ Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const Ch
         }
         Pixel* single = region.pixels.data();
         Pixel* super = single + n;
+        // Index of absolute (x, y) in the region's arrays.
+        auto at = [&](int x, int y) { return static_cast<long>(y - r.y0) * rw + (x - r.x0); };
+        if (!carried.pixels.empty()) {
+            const long cw = carriedRegion.Width(), cn = cw * carriedRegion.Height();
+            for (int y = carriedRegion.y0; y <= carriedRegion.y1; ++y)
+                for (int x = carriedRegion.x0; x <= carriedRegion.x1; ++x) {
+                    const long c = static_cast<long>(y - carriedRegion.y0) * cw + (x - carriedRegion.x0);
+                    single[at(x, y)] = carried.pixels[c];
+                    super[at(x, y)] = carried.pixels[cn + c];
+                }
+            carried.pixels.clear();
+        }
         auto lastCheckpoint = std::chrono::steady_clock::now();
         auto safePoint = [&] {
             if (StopRequested()) {
@@ -111,8 +130,6 @@ Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const Ch
                 lastCheckpoint = now;
             }
         };
-        // Index of absolute (x, y) in the region's arrays.
-        auto at = [&](int x, int y) { return static_cast<long>(y - r.y0) * rw + (x - r.x0); };
         // A pixel of R whose five-pixel neighbourhood leaves R: its own test and its
         // outside neighbours' tests are unknown.
         auto atFakeEdge = [&](int x, int y) {
@@ -221,7 +238,11 @@ Image Renderer::RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const Ch
         for (int y = window_.minY; y <= window_.maxY && certain; ++y)
             for (int x = window_.minX; x <= window_.maxX; ++x)
                 if (decision[at(x, y)] == Decision::Maybe) certain = false;
-        if (!certain && !wholeScreen) continue;
+        if (!certain && !wholeScreen) {
+            carried = std::move(region);
+            carriedRegion = r;
+            continue;
+        }
         FrameState done;
         done.frame = frame_;
         done.width = w;
