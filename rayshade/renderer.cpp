@@ -129,20 +129,10 @@ void Renderer::Supersample(int x, int y, Pixel& px) const {
 
 bool Renderer::NeedsRefinement(const Pixel* pixels, int x, int y) const {
     const int w = window_.Width();
-    const Pixel* five[5] = {&pixels[y * w + x], &pixels[y * w + x - 1], &pixels[y * w + x + 1],
-                            &pixels[(y - 1) * w + x], &pixels[(y + 1) * w + x]};
-    Color lo = five[0]->Value(), hi = lo;
-    for (const Pixel* p : five) {
-        const Color c = p->Value();
-        lo = {std::min(lo.r, c.r), std::min(lo.g, c.g), std::min(lo.b, c.b)};
-        hi = {std::max(hi.r, c.r), std::max(hi.g, c.g), std::max(hi.b, c.b)};
-    }
-    auto exceeds = [](double mn, double mx, double threshold) {
-        double sum = mx + mn;
-        return sum > kEpsilon && (mx - mn) / sum > threshold;
-    };
-    return exceeds(lo.r, hi.r, options_.contrast.r) || exceeds(lo.g, hi.g, options_.contrast.g) ||
-           exceeds(lo.b, hi.b, options_.contrast.b);
+    const Color five[5] = {pixels[y * w + x].Value(), pixels[y * w + x - 1].Value(),
+                           pixels[y * w + x + 1].Value(), pixels[(y - 1) * w + x].Value(),
+                           pixels[(y + 1) * w + x].Value()};
+    return ContrastExceeds(five, options_.contrast);
 }
 
 namespace {
@@ -156,6 +146,7 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
                             CheckpointFn checkpoint, double checkpointSeconds) {
     frame_ = frame;
     frameTime_ = frameTime;
+    if (!WindowIsScreen()) return RenderSubWindow(withAlpha, resumeFrom, checkpoint, checkpointSeconds);
     const int w = window_.Width(), h = window_.Height();
     // One extra row below the window is sampled for the contrast test of the last row
     // (spec §3.3) but never written.

@@ -8,11 +8,13 @@
 // row); the set of supersampled pixels is therefore also independent of threads.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <type_traits>
 #include <vector>
 
+#include "libcommon/constants.h"
 #include "libcommon/large_buffer.h"
 #include "libimage/image.h"
 #include "libshade/scene.h"
@@ -33,6 +35,22 @@ struct RenderWindow {
 // Computes the window from options; reports Abort "Invalid window specification" when it
 // falls outside the screen.
 RenderWindow ComputeWindow(const RenderOptions& options);
+
+// The contrast test of spec §3.3 on a pixel and its four neighbours: true when, in some
+// channel, (max - min) / (max + min) exceeds that channel's threshold.
+inline bool ContrastExceeds(const Color (&five)[5], const Color& threshold) {
+    Color lo = five[0], hi = lo;
+    for (const Color& c : five) {
+        lo = {std::min(lo.r, c.r), std::min(lo.g, c.g), std::min(lo.b, c.b)};
+        hi = {std::max(hi.r, c.r), std::max(hi.g, c.g), std::max(hi.b, c.b)};
+    }
+    auto exceeds = [](double mn, double mx, double t) {
+        double sum = mx + mn;
+        return sum > kEpsilon && (mx - mn) / sum > t;
+    };
+    return exceeds(lo.r, hi.r, threshold.r) || exceeds(lo.g, hi.g, threshold.g) ||
+           exceeds(lo.b, hi.b, threshold.b);
+}
 
 // Progress callback: `done` of `total` units of work finished (called from one thread).
 using ProgressFn = std::function<void(long done, long total)>;
@@ -124,6 +142,11 @@ class Renderer {
         workers_.Run(count, body, false);
     }
     bool NeedsRefinement(const Pixel* pixels, int x, int y) const;
+    // A window smaller than the screen (window_render.cpp): supersamples exactly the pixels
+    // the full-screen render supersamples there, so tiles paste into the full image.
+    bool WindowIsScreen() const;
+    Image RenderSubWindow(bool withAlpha, FrameState* resumeFrom, const CheckpointFn& checkpoint,
+                          double checkpointSeconds);
     Image Encode(const FrameState& state, bool withAlpha) const;
     const Scene& scene_;
     const RenderOptions& options_;
