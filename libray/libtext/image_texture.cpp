@@ -88,7 +88,7 @@ std::shared_ptr<const Image> ImageTexture::LoadShared(const std::string& path,
 }
 
 std::shared_ptr<Texture> ImageTexture::Create(ArgReader& args) {
-    std::string path = args.ReadFilename();
+    std::string path = args.ReadDataFilename();
     ImageTextureOptions options;
     for (;;) {
         if (args.Accept("component")) {
