@@ -70,31 +70,6 @@ void OnInterrupt(int signalNumber) {
     rs::RequestStop();
 }
 
-// What identifies a render for continuing it: the command line and the scene file's bytes,
-// leaving out the options that cannot change the image (-c itself, threads, reporting).
-// A partial state saved under another fingerprint is refused.
-std::string RenderFingerprint(int argc, char** argv, const std::string& inputFile) {
-    std::string f;
-    for (int i = 1; i < argc; ++i) {
-        std::string a = argv[i];
-        if (a == "-c" || a == "-q" || a == "-v") continue;
-        if (a == "-t" || a == "-V" || a == "-F") {
-            ++i;  // and its argument
-            continue;
-        }
-        f += a + '\n';
-    }
-    uint64_t hash = 1469598103934665603ULL;  // FNV-1a over the scene file
-    if (std::FILE* in = inputFile.empty() ? nullptr : std::fopen(inputFile.c_str(), "rb")) {
-        unsigned char block[65536];
-        for (size_t n; (n = std::fread(block, 1, sizeof block, in)) > 0;) {
-            for (size_t i = 0; i < n; ++i) hash = (hash ^ block[i]) * 1099511628211ULL;
-        }
-        std::fclose(in);
-    }
-    return f + std::to_string(hash);
-}
-
 // Seconds between partial-state saves: RAYSHADE_CHECKPOINT_SECONDS, default 10.
 double CheckpointSeconds() {
     const char* v = std::getenv("RAYSHADE_CHECKPOINT_SECONDS");
@@ -186,7 +161,8 @@ int Run(int argc, char** argv) {
 
     // Continued rendering: the partial state names the frame in progress; earlier frames
     // were written before the interruption.
-    const std::string fingerprint = RenderFingerprint(argc, argv, cl.inputFile);
+    const std::string fingerprint =
+        rs::RenderFingerprint(std::vector<std::string>(argv + 1, argv + argc), cl.inputFile);
     const std::string partialPath = toStdout ? std::string() : rs::PartialStatePath(o.outFile);
     rs::FrameState resumed;
     int firstFrame = o.startFrame;
