@@ -34,7 +34,8 @@ struct RenderWindow {
 // falls outside the screen.
 RenderWindow ComputeWindow(const RenderOptions& options);
 
-// Progress callback: `done` of `total` units of work finished (called from one thread).
+// Progress callback: `done` of `total` units of work finished (never called by two threads
+// at once).
 using ProgressFn = std::function<void(long done, long total)>;
 
 // One pixel's state: its single sample until it is supersampled, then the filtered n×n
