@@ -204,6 +204,7 @@ bool Parser::ParseCameraItem() {
         Token kw = tokens_.Next();
         TokenArgReader args = Args(kw, "eyep x y z");
         cam.eye = args.ReadVector();
+        cam.viewStatement = kw.Location();
         if (tokens_.Peek().kind == TokenKind::Keyword) {
             TransformList ignored;
             ParseTransforms(ignored);
@@ -212,9 +213,11 @@ bool Parser::ParseCameraItem() {
     } else if (k == "lookp") {
         Token kw = tokens_.Next();
         cam.lookAt = Args(kw, "lookp x y z").ReadVector();
+        cam.viewStatement = kw.Location();
     } else if (k == "up") {
         Token kw = tokens_.Next();
         cam.up = Args(kw, "up x y z").ReadVector();
+        cam.viewStatement = kw.Location();
     } else if (k == "fov") {
         Token kw = tokens_.Next();
         TokenArgReader args = Args(kw, "fov hfov [vfov]");

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "libcommon/error.h"
 #include "libcommon/vector.h"
 #include "liblight/light.h"
 #include "libobj/object.h"
@@ -21,6 +22,9 @@ struct Camera {
     double aperture = 0;   // radius of the square lens; 0 = pinhole
     double focalDist = -1; // < 0: |lookAt − eye|
     double eyeSep = -1;    // < 0: unset (stereo then impossible)
+    // The last of the eyep, lookp and up statements (unknown when the scene has none): a
+    // degenerate view is reported there.
+    SourceLocation viewStatement;
 };
 
 enum class FilterKind { Box, Gauss };

@@ -16,8 +16,12 @@ CameraSetup::CameraSetup(const Camera& camera, const RenderOptions& options) {
         dist = Length(d);
         gaze = dist > 0 ? d / dist : Vec3{};
         Vec3 r = Cross(gaze, camera.up);
-        if (!(dist > 0) || !(Length(r) > 0))
-            Report(Severity::Abort, {}, "view and up directions are identical");
+        if (!(dist > 0))
+            Report(Severity::Abort, camera.viewStatement,
+                   "view and up directions are identical: eyep and lookp are the same point");
+        if (!(Length(r) > 0))
+            Report(Severity::Abort, camera.viewStatement,
+                   "view and up directions are identical: up is parallel to lookp - eyep");
         right_ = Normalize(r);
         up_ = Normalize(Cross(right_, gaze));
     };

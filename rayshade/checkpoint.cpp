@@ -9,6 +9,8 @@
 #include <fstream>
 #include <type_traits>
 
+#include "rayshade/cli.h"
+
 namespace rs {
 
 namespace {
@@ -55,6 +57,63 @@ class Reader {
 };
 
 }  // namespace
+
+std::string RenderFingerprint(const std::vector<std::string>& args, const std::string& inputFile) {
+    std::string f;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        const int count = a.size() == 2 && a[0] == '-' ? OptionArgumentCount(a[1]) : -1;
+        if (count < 0) {
+            f += "file " + a + '\n';
+            continue;
+        }
+        std::string line = a;
+        for (int k = 0; k < count && i + 1 < args.size(); ++k) line += ' ' + args[++i];
+        if (a != "-c" && a != "-q" && a != "-v" && a != "-t" && a != "-V" && a != "-F") f += line + '\n';
+    }
+    uint64_t hash = 1469598103934665603ULL;  // FNV-1a over the scene file
+    if (std::FILE* in = inputFile.empty() ? nullptr : std::fopen(inputFile.c_str(), "rb")) {
+        unsigned char block[65536];
+        for (size_t n; (n = std::fread(block, 1, sizeof block, in)) > 0;) {
+            for (size_t i = 0; i < n; ++i) hash = (hash ^ block[i]) * 1099511628211ULL;
+        }
+        std::fclose(in);
+    }
+    return f + "scene " + std::to_string(hash);
+}
+
+std::string DescribeFingerprintDifference(const std::string& saved, const std::string& current) {
+    auto lines = [](const std::string& text) {
+        std::vector<std::string> out;
+        for (size_t start = 0; start < text.size();) {
+            size_t end = text.find('\n', start);
+            if (end == std::string::npos) end = text.size();
+            out.push_back(text.substr(start, end - start));
+            start = end + 1;
+        }
+        return out;
+    };
+    const std::vector<std::string> was = lines(saved), now = lines(current);
+    auto only = [](const std::vector<std::string>& a, const std::vector<std::string>& b) {
+        std::vector<std::string> rest = b;  // the lines of a not matched in b (a multiset)
+        for (const std::string& line : a) {
+            auto it = std::find(rest.begin(), rest.end(), line);
+            if (it == rest.end()) return line;
+            rest.erase(it);
+        }
+        return std::string();
+    };
+    auto option = [](const std::string& line) { return line.substr(0, line.find(' ')); };
+    const std::string lost = only(was, now), added = only(now, was);
+    if (lost.empty() && added.empty()) return {};
+    if (option(lost) == "scene" || option(added) == "scene") {
+        if (option(lost) == option(added)) return "the scene file has changed since";
+    }
+    if (!lost.empty() && !added.empty() && option(lost) == option(added))
+        return "it was saved with " + lost + ", not " + added;
+    if (!lost.empty() && option(lost) != "scene") return "it was saved with " + lost + ", which this command lacks";
+    return "it was saved without " + added + ", which this command gives";
+}
 
 std::string PartialStatePath(const std::string& outFile) { return outFile + ".partial"; }
 
@@ -119,7 +178,9 @@ bool LoadFrameState(const std::string& path, const std::string& fingerprint, Fra
     std::string saved;
     if (!r.GetBytes(saved, kMaxFingerprint)) return damaged();
     if (saved != fingerprint) {
-        error = "partial state '" + path + "' belongs to a different scene or options";
+        error = "partial state '" + path + "' belongs to another render: " +
+                DescribeFingerprintDifference(saved, fingerprint) +
+                " (-c needs the same command and scene file)";
         return false;
     }
     int32_t frame, width, rows, phase, pass;

@@ -4,10 +4,24 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "rayshade/renderer.h"
 
 namespace rs {
+
+// What identifies a render for continuing it: one line per command-line option with its
+// arguments ("-R 320 240"), in the order given, leaving out those that cannot change the
+// image (-c, -q, -v, -t, -V, -F); a line "file NAME" for the scene file as named; and last
+// a line "scene HASH" with a hash of the scene file's bytes. A partial state saved under
+// another fingerprint is refused.
+std::string RenderFingerprint(const std::vector<std::string>& args, const std::string& inputFile);
+
+// What differs between two fingerprints, for the refusal message: the first option the
+// saved render had and this one lacks (or has with other arguments), else the first one
+// only this one has, else the scene file (e.g. "it was saved with -R 320 240, not -R 256
+// 256"). Empty when they are equal.
+std::string DescribeFingerprintDifference(const std::string& saved, const std::string& current);
 
 // The partial file that belongs to output image `outFile`.
 std::string PartialStatePath(const std::string& outFile);

@@ -55,33 +55,112 @@ class ArgCursor {
 
 }  // namespace
 
+namespace {
+
+// One line of the help: the option as docs/options.md writes it, and what it does.
+struct OptionHelp {
+    const char* synopsis;
+    const char* summary;
+};
+struct OptionGroup {
+    const char* title;
+    std::vector<OptionHelp> options;
+};
+
+// Every option, in the groups and order of docs/options.md (cli_test compares the two).
+const std::vector<OptionGroup>& OptionGroups() {
+    static const std::vector<OptionGroup> groups = {
+        {"Input",
+         {{"-P args", "arguments for the C preprocessor, one word (e.g. -P -DNAME=value)"},
+          {"-u", "toggle the C preprocessor (on by default)"}}},
+        {"Output",
+         {{"-O file", "output file (.png, or .mtv for the original's format)"},
+          {"-a", "toggle the alpha channel (RGBA PNG)"},
+          {"-G g", "output gamma (default 1)"},
+          {"-e", "accepted and ignored (the original's exponential RLE)"},
+          {"-m", "accepted and ignored (the original's RLE sample map)"}}},
+        {"Image and sampling",
+         {{"-R x y", "resolution (default 512 512)"},
+          {"-W x0 x1 y0 y1", "render only this window of the screen (pixels)"},
+          {"-X l r b t", "crop the window (fractions, default 0 1 0 1)"},
+          {"-S n", "samples per pixel side, 1-16"},
+          {"-T r g b", "contrast thresholds of adaptive supersampling"},
+          {"-j", "toggle jittered sampling"},
+          {"-g", "toggle the Gaussian pixel filter"},
+          {"-p", "preview: no shadows, depth 0, one sample per pixel"}}},
+        {"Ray tracing",
+         {{"-D d", "maximum reflection/refraction depth (default 5)"},
+          {"-C r g b", "ray-tree cutoff per channel (default 0.002)"},
+          {"-n", "toggle no shadows"},
+          {"-o", "toggle transparent shadows"},
+          {"-s", "accepted (shadow caching; nothing is cached)"},
+          {"-f", "toggle flipping of triangle and polygon normals"}}},
+        {"Animation and stereo",
+         {{"-A f", "first frame to render (default 0)"},
+          {"-N k", "number of frames"},
+          {"-E s", "eye separation for stereo"},
+          {"-l", "render the left eye of a stereo pair"},
+          {"-r", "render the right eye of a stereo pair"}}},
+        {"Running and reporting",
+         {{"-t n", "worker threads (default: all cores)"},
+          {"-c", "continue an interrupted render (the same command plus -c)"},
+          {"-q", "quiet: no warnings, no progress"},
+          {"-v", "verbose: options, progress and statistics on standard error"},
+          {"-V file", "verbose, with the report written to file"},
+          {"-F n", "report progress every n scanlines"},
+          {"-L name=value", "raise a resource limit (docs/robustness.md): resolutionSide,\n"
+                            "resolutionPixels, samplesPerSide, rayDepth, sceneBytes, gridVoxels,\n"
+                            "gridEntries, polylinePoints, octreeBytes"},
+          {"-h", "print this help and exit"}}},
+        {"Implicit objects (every one, whatever its scene says)",
+         {{"-M method", "auto, patches, kb89, march, sphere, segment, polynomial, exact"},
+          {"-I eps", "root tolerance"},
+          {"-K d", "octree maximum depth (0-16)"},
+          {"-J r", "Dratio of heuristic 3bis (patches)"},
+          {"-B step", "march step"},
+          {"-H name=on|off", "one octree heuristic or search test: range, patch, 1, 1bis,\n"
+                             "3, 3bis, 4, 5, 0bis, t1, 2bis, t3"}}},
+    };
+    return groups;
+}
+
+std::string BuildUsage() {
+    constexpr int kColumn = 18;  // where the summaries start
+    std::string text = "usage: rayshade [options] [file.ray]\n";
+    for (const OptionGroup& group : OptionGroups()) {
+        text += std::string(group.title) + ":\n";
+        for (const OptionHelp& option : group.options) {
+            std::string line = std::string("  ") + option.synopsis;
+            line += line.size() < kColumn ? std::string(kColumn - line.size(), ' ') : "  ";
+            // Continuation lines of a long summary start in the summary column.
+            for (const char* c = option.summary; *c; ++c) {
+                line += *c;
+                if (*c == '\n') line += std::string(kColumn, ' ');
+            }
+            text += line + "\n";
+        }
+    }
+    return text;
+}
+
+}  // namespace
+
 const char* UsageText() {
-    return "usage: rayshade [options] [file.ray]\n"
-           "  -A frame      first frame to render        -N frames    number of frames\n"
-           "  -a            toggle alpha channel (RGBA PNG output)\n"
-           "  -C r g b      ray cutoff thresholds        -D depth     maximum ray depth\n"
-           "  -E sep        eye separation               -l / -r      left / right stereo view\n"
-           "  -F freq       report every freq lines      -f           flip triangle/polygon normals\n"
-           "  -G gamma      output gamma                 -g           toggle gaussian filter\n"
-           "  -h            this help                    -j           toggle jittered sampling\n"
-           "  -n            toggle shadows off           -O file      output file (.png or .mtv)\n"
-           "  -o            toggle transparent shadows   -P args      arguments for cpp\n"
-           "  -p            preview (no shadows, depth 0, 1 sample)\n"
-           "  -q            quiet                        -R x y       resolution\n"
-           "  -S n          samples per side (1-16)      -s           toggle shadow caching\n"
-           "  -T r g b      contrast thresholds          -t threads   worker threads (default: all cores)\n"
-           "  -u            toggle the C preprocessor    -V file      verbose report to file\n"
-           "  -v            verbose report               -W x0 x1 y0 y1  sub-window (pixels)\n"
-           "  -X l r b t    crop window (fractions)\n"
-           "  -L name=value raise a resource limit (docs/robustness.md): resolutionSide,\n"
-           "                resolutionPixels, samplesPerSide, rayDepth, sceneBytes, gridVoxels,\n"
-           "                gridEntries, polylinePoints, octreeBytes\n"
-           "  Implicit objects (every one, whatever its scene says):\n"
-           "  -M method     auto, patches, kb89, march, sphere, segment, polynomial, exact\n"
-           "  -I eps        root tolerance               -K depth     octree maximum depth\n"
-           "  -J dratio     Dratio (patches)             -B step      march step\n"
-           "  -H name=on|off  octree heuristic or search test: range, patch, 1, 1bis, 3, 3bis,\n"
-           "                4, 5, 0bis, t1, 2bis, t3\n";
+    static const std::string text = BuildUsage();
+    return text.c_str();
+}
+
+int OptionArgumentCount(char letter) {
+    for (const OptionGroup& group : OptionGroups()) {
+        for (const OptionHelp& option : group.options) {
+            const std::string synopsis = option.synopsis;
+            if (synopsis[1] != letter) continue;
+            int words = 0;
+            for (char c : synopsis) words += c == ' ';
+            return words;
+        }
+    }
+    return -1;
 }
 
 bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std::string& error) {

@@ -28,7 +28,12 @@ struct CommandLine {
 // or malformed argument, two input files); the caller prints usage and exits 1.
 bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& out, std::string& error);
 
-// The usage text printed by -h and on usage errors.
+// The usage text printed by -h and on usage errors: every option, grouped as in
+// docs/options.md.
 const char* UsageText();
+
+// How many words follow option -`letter` (-R: 2, -n: 0); -1 for a letter that is not an
+// option. From the same table as UsageText.
+int OptionArgumentCount(char letter);
 
 }  // namespace rs

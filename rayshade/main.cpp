@@ -3,8 +3,10 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -31,31 +33,70 @@ using rs::Severity;
 std::atomic<bool> gQuiet{false};
 std::FILE* gStats = stderr;
 
-// Progress on stderr: a live bar on a terminal, a plain line every 10% otherwise.
+// "4.2s", "12s", "3m05s", "1h02m": a duration for the progress lines.
+std::string Duration(double seconds) {
+    const long s = std::lround(std::max(0.0, seconds));
+    char text[32];
+    if (seconds < 9.95)
+        std::snprintf(text, sizeof text, "%.1fs", std::max(0.0, seconds));
+    else if (s < 60)
+        std::snprintf(text, sizeof text, "%lds", s);
+    else if (s < 3600)
+        std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
+    else
+        std::snprintf(text, sizeof text, "%ldh%02ldm", s / 3600, s / 60 % 60);
+    return text;
+}
+
+// Progress on stderr: a live bar on a terminal, a plain line every 10% otherwise, with the
+// time left extrapolated from the time so far (the renderer reports a fraction of the
+// estimated work, which grows roughly in proportion to time: rayshade/progress_estimate.h).
 class Progress {
   public:
-    Progress(bool quiet, int frame) : quiet_(quiet), tty_(isatty(STDERR_FILENO)), frame_(frame) {}
+    Progress(bool quiet, int frame)
+        : quiet_(quiet), tty_(isatty(STDERR_FILENO)), frame_(frame),
+          start_(std::chrono::steady_clock::now()) {}
     void operator()(long done, long total) {
         if (quiet_ || total <= 0) return;
-        int percent = static_cast<int>(100 * done / total);
+        const bool finished = done >= total;
+        const int percent = static_cast<int>(100 * done / total);
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        const double fraction = static_cast<double>(done) / static_cast<double>(total);
+        // No estimate from the first percent or the first half second: too little to go on.
+        const bool estimate = fraction >= 0.01 && elapsed >= 0.5;
+        const double left = estimate ? elapsed * (1 - fraction) / fraction : 0;
         if (tty_) {
-            if (percent == last_) return;
+            // Redrawn at each percent, and each second for the time left.
+            if (percent == last_ && !finished && elapsed < lastDraw_ + 1) return;
             last_ = percent;
-            int bar = percent / 4;
-            std::fprintf(stderr, "\rframe %d [%.*s%*s] %3d%%", frame_, bar,
-                         "#########################", 25 - bar, "", percent);
-            if (done >= total) std::fputc('\n', stderr);
+            lastDraw_ = elapsed;
+            const int bar = percent / 4;
+            const std::string tail = finished ? "in " + Duration(elapsed)
+                                     : estimate ? Duration(left) + " left"
+                                                : std::string();
+            std::fprintf(stderr, "\rframe %d [%.*s%*s] %3d%% %-12s", frame_, bar,
+                         "#########################", 25 - bar, "", percent, tail.c_str());
+            if (finished) std::fputc('\n', stderr);
             std::fflush(stderr);
-        } else if (percent / 10 != last_ / 10 || (done >= total && last_ != 100)) {
+        } else if (percent / 10 != last_ / 10 || (finished && last_ != 100)) {
             last_ = percent;
-            std::fprintf(stderr, "frame %d: %d%% done\n", frame_, percent);
+            if (finished)
+                std::fprintf(stderr, "frame %d: 100%% done in %s\n", frame_, Duration(elapsed).c_str());
+            else if (estimate)
+                std::fprintf(stderr, "frame %d: %d%% done, %s elapsed, about %s left\n", frame_, percent,
+                             Duration(elapsed).c_str(), Duration(left).c_str());
+            else
+                std::fprintf(stderr, "frame %d: %d%% done\n", frame_, percent);
         }
     }
 
   private:
     bool quiet_, tty_;
     int frame_;
+    std::chrono::steady_clock::time_point start_;
     int last_ = -1;
+    double lastDraw_ = 0;
 };
 
 // The first SIGINT or SIGTERM asks the render to stop after the work items in progress
@@ -68,31 +109,6 @@ void OnInterrupt(int signalNumber) {
         return;
     }
     rs::RequestStop();
-}
-
-// What identifies a render for continuing it: the command line and the scene file's bytes,
-// leaving out the options that cannot change the image (-c itself, threads, reporting).
-// A partial state saved under another fingerprint is refused.
-std::string RenderFingerprint(int argc, char** argv, const std::string& inputFile) {
-    std::string f;
-    for (int i = 1; i < argc; ++i) {
-        std::string a = argv[i];
-        if (a == "-c" || a == "-q" || a == "-v") continue;
-        if (a == "-t" || a == "-V" || a == "-F") {
-            ++i;  // and its argument
-            continue;
-        }
-        f += a + '\n';
-    }
-    uint64_t hash = 1469598103934665603ULL;  // FNV-1a over the scene file
-    if (std::FILE* in = inputFile.empty() ? nullptr : std::fopen(inputFile.c_str(), "rb")) {
-        unsigned char block[65536];
-        for (size_t n; (n = std::fread(block, 1, sizeof block, in)) > 0;) {
-            for (size_t i = 0; i < n; ++i) hash = (hash ^ block[i]) * 1099511628211ULL;
-        }
-        std::fclose(in);
-    }
-    return f + std::to_string(hash);
 }
 
 // Seconds between partial-state saves: RAYSHADE_CHECKPOINT_SECONDS, default 10.
@@ -186,7 +202,8 @@ int Run(int argc, char** argv) {
 
     // Continued rendering: the partial state names the frame in progress; earlier frames
     // were written before the interruption.
-    const std::string fingerprint = RenderFingerprint(argc, argv, cl.inputFile);
+    const std::string fingerprint =
+        rs::RenderFingerprint(std::vector<std::string>(argv + 1, argv + argc), cl.inputFile);
     const std::string partialPath = toStdout ? std::string() : rs::PartialStatePath(o.outFile);
     rs::FrameState resumed;
     int firstFrame = o.startFrame;

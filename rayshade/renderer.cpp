@@ -11,6 +11,7 @@
 #include "libcommon/constants.h"
 #include "libcommon/error.h"
 #include "libcommon/stats.h"
+#include "rayshade/progress_estimate.h"
 
 namespace rs {
 
@@ -165,12 +166,14 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
     auto& pixels = state.pixels;
     using Phase = FrameState::Phase;
 
-    const long totalWork = static_cast<long>(w) * rows * 2;
-    std::atomic<long> work{0};
-    auto report = [&](long units) {
-        long now = work.fetch_add(units) + units;
-        if (progress_) progress_(std::min(now, totalWork), totalWork);
-    };
+    // Progress in samples (progress_estimate.h); a continued frame starts with its work.
+    const long extraSamples = pattern_.Cells() - 1;
+    FrameProgress progress(w, h, pattern_.Cells(), progress_);
+    if (resumeFrom) {
+        long taken = 0;
+        for (const Pixel& px : pixels) taken += (px.sampled ? 1 : 0) + (px.supersampled ? extraSamples : 0);
+        progress.Add(taken);
+    }
     auto lastCheckpoint = std::chrono::steady_clock::now();
     // After each piece of work: save the state when asked to stop (then stop) or when the
     // checkpoint interval has passed.
@@ -194,12 +197,32 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
         constexpr long kRun = 32;
         const long count = static_cast<long>(list.size());
         ParallelFor((count + kRun - 1) / kRun, [&](long k) {
+            long taken = 0;
             for (long i = k * kRun; i < std::min(count, (k + 1) * kRun); ++i) {
                 const long idx = list[i];
-                if (!pixels[idx].supersampled)
+                if (!pixels[idx].supersampled) {
                     Supersample(static_cast<int>(idx % w), static_cast<int>(idx / w), pixels[idx]);
+                    ++taken;
+                }
             }
+            progress.Add(taken * extraSamples);
         });
+    };
+
+    // For the progress estimate while single samples are taken: the contrast test of the
+    // interior rows whose neighbours are all sampled once rows [y0, y1) are (the rows not
+    // tested after earlier blocks), on the single samples. Reads pixels only.
+    std::atomic<long> flaggedSoFar{0}, testedSoFar{0};
+    auto estimateRefinement = [&](int y0, int y1) {
+        const int first = std::max(1, y0 - 1), last = std::min(h - 1, y1 - 2);
+        if (last < first || w < 3) return;
+        ParallelForAll(last - first + 1, [&](long i) {
+            long count = 0;
+            for (int x = 1; x < w - 1; ++x) count += NeedsRefinement(pixels.data(), x, first + static_cast<int>(i));
+            flaggedSoFar += count;
+            testedSoFar += w - 2;
+        });
+        progress.FlaggedSoFar(flaggedSoFar, testedSoFar);
     };
 
     // 1. One sample per pixel, in blocks of rows so the state can be saved between them:
@@ -212,13 +235,18 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
             int y1 = std::min(rows, y0 + blockRows);
             ParallelFor(y1 - y0, [&](long i) {
                 long y = y0 + i;
+                long taken = 0;
                 for (int x = 0; x < w; ++x) {
                     Pixel& px = pixels[y * w + x];
-                    if (!px.sampled) TakeSingleSample(x, static_cast<int>(y), px);
+                    if (!px.sampled) {
+                        TakeSingleSample(x, static_cast<int>(y), px);
+                        ++taken;
+                    }
                 }
-                report(w);
+                progress.Add(taken);
             });
             safePoint();
+            if (extraSamples > 0) estimateRefinement(y0, y1);
         }
         state.phase = pattern_.Cells() > 1 ? Phase::Border : Phase::Done;
     }
@@ -250,7 +278,6 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
     // its two neighbouring rows: all rows in parallel, with no serial step over the lists.
     while (state.phase == Phase::Refinement) {
         supersampleAll(state.todo);
-        report(static_cast<long>(state.todo.size()) / 4);
         safePoint();
 
         // Row y's entries of the list just supersampled (it is in increasing order).
@@ -325,9 +352,10 @@ Image Renderer::RenderFrame(int frame, double frameTime, bool withAlpha, FrameSt
                 if (queue[x]) *out++ = y * w + x;
         });
         ++state.pass;
+        progress.NextPass(static_cast<long>(state.todo.size()));
         if (state.todo.empty()) state.phase = Phase::Done;
     }
-    if (progress_) progress_(totalWork, totalWork);
+    progress.Finish();
     return Encode(state, withAlpha);
 }
 

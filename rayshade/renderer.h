@@ -52,7 +52,8 @@ inline bool ContrastExceeds(const Color (&five)[5], const Color& threshold) {
            exceeds(lo.b, hi.b, threshold.b);
 }
 
-// Progress callback: `done` of `total` units of work finished (called from one thread).
+// Progress callback: `done` of `total` units of work finished (never called by two threads
+// at once).
 using ProgressFn = std::function<void(long done, long total)>;
 
 // One pixel's state: its single sample until it is supersampled, then the filtered n×n

@@ -184,6 +184,20 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
             ng = Normalize(nodeTransforms[i]->ApplyNormal(ng));
         }
     }
+    // Face the ray (double-sided shading). For interpolated normals the geometric normal
+    // decides when the two disagree. As in the original, the side is decided by the normals
+    // before texturing (spec §3.6: they are made to face the ray, then textured), so a bump
+    // that tilts the shading normal away from the viewer is kept, not mirrored back (the
+    // bevels of `stripe` and every other bump). A dot product with the ray has the same sign
+    // in every space along the path (normals map with the inverse transpose), so the test
+    // is made in the primitive's space.
+    const double dn = Dot(rayPrimitive.dir, normals.shading);
+    const double dg = Dot(rayPrimitive.dir, normals.geometric);
+    const bool flip = (normals.smooth && ((dn > 0) != (dg > 0))) ? dg > 0 : dn > 0;
+    if (flip) {
+        n = -n;
+        ng = -ng;
+    }
     // Numerical guard, six finiteness tests per hit: a normal that overflowed or vanished
     // (extreme scale factors, degenerate geometry) must not carry NaN into the shading, so
     // the geometric normal falls back to facing the ray and the shading normal to it.
@@ -195,14 +209,9 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
         Count(kBadNormals);
         n = ng;
     }
-
-    // Face the ray (double-sided shading). For interpolated normals the geometric normal
-    // decides when the two disagree.
-    double dn = Dot(ray.dir, n), dg = Dot(ray.dir, ng);
-    bool flip = (normals.smooth && ((dn > 0) != (dg > 0))) ? dg > 0 : dn > 0;
     return {.point = ray.At(hit.t()),
-            .normal = flip ? -n : n,
-            .geometric = flip ? -ng : ng,
+            .normal = n,
+            .geometric = ng,
             .smooth = normals.smooth,
             .entering = hit.enterOverride >= 0 ? hit.enterOverride == 1 : !flip,
             .surface = surface};

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # From a fresh Debian 12 machine to a rendered picture: installs the dependencies, builds
-# rayshade, and renders examples/spheres.ray to spheres.png in the current directory.
+# every program (scripts/build.sh: the same build scripts/run-tests.sh uses) and renders
+# examples/spheres.ray to build/spheres.png, leaving nothing outside build/.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 "$here/scripts/install-deps.sh"
-cmake -S "$here" -B "$here/build" -DCMAKE_BUILD_TYPE=Release
-cmake --build "$here/build" -j"$(nproc 2>/dev/null || echo 2)" --target rayshade
-"$here/build/rayshade/rayshade" -O spheres.png "$here/examples/spheres.ray"
-echo "Wrote $(pwd)/spheres.png"
+"$here/scripts/build.sh"
+"$here/build/rayshade/rayshade" -O "$here/build/spheres.png" "$here/examples/spheres.ray"
+echo "Wrote $here/build/spheres.png"

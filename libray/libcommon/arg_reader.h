@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "libcommon/data_file.h"
 #include "libcommon/error.h"
 #include "libcommon/vector.h"
 
@@ -53,8 +54,14 @@ class ArgReader {
     virtual bool Peek(const char* word) = 0;
     // A NAME token.
     virtual std::string ReadName() = 0;
-    // A file name, resolved relative to the current directory.
+    // A file name as written (relative names are relative to the working directory).
     virtual std::string ReadFilename() = 0;
+    // The name of a file the scene reads (height field, image, colormap): as ReadFilename,
+    // then resolved by ResolveDataFile against the file holding the current keyword.
+    std::string ReadDataFilename() {
+        const SourceLocation where = Location();
+        return ResolveDataFile(ReadFilename(), where.file);
+    }
     // True when the next token can start a file name (optional file arguments).
     virtual bool PeekFilename() = 0;
     // A surface expression (spec §2 `surface`): attributes, a surface name, or cursurf.

@@ -100,7 +100,7 @@ HeightField::HeightField(int n, std::vector<float> heights)
 }
 
 std::shared_ptr<Primitive> HeightField::Create(ArgReader& args) {
-    std::string path = args.ReadFilename();
+    std::string path = args.ReadDataFilename();
     int n = 0;
     std::vector<float> heights;
     std::string error;

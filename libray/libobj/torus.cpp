@@ -126,7 +126,7 @@ SurfaceNormals Torus::Normal(const Vec3& p, const PrimitiveHit&) const {
     return {n, n, false};
 }
 
-SurfaceUV Torus::UV(const Vec3& p, const Vec3&, const PrimitiveHit&) const {
+SurfaceUV Torus::UV(const Vec3& p, const Vec3& facingNormal, const PrimitiveHit&) const {
     const Vec3 q = frame_.ToCanonicalPoint(p);
     const double rho = std::sqrt(q.x * q.x + q.y * q.y);
     SurfaceUV out;
@@ -137,13 +137,13 @@ SurfaceUV Torus::UV(const Vec3& p, const Vec3&, const PrimitiveHit&) const {
     if (q.z > 0) v = 1 - v;
     out.uv = {u, v};
     if (rho > 0) {
-        // With the tube angle φ (n = cosφ·ρ̂ + sinφ·ẑ), v grows with φ and dq/dφ is
-        // along −sinφ·ρ̂ + cosφ·ẑ.
-        const Vec3 radial{q.x / rho, q.y / rho, 0};
-        const Vec3 n = CanonicalNormal(q);
-        const double cosPhi = Dot(n, radial), sinPhi = n.z;
-        out.dpdu = frame_.FromCanonicalVector({-radial.y, radial.x, 0});
-        out.dpdv = frame_.FromCanonicalVector(radial * -sinPhi + Vec3{0, 0, cosPhi});
+        out.dpdu = Normalize(frame_.FromCanonicalVector({-q.y, q.x, 0}));
+        // ∂P/∂v as the original computes it: the ray-facing normal × ∂P/∂u, both already in
+        // object space, carried through the canonical-to-object map once more. The second
+        // map is a quirk (like the cone's ∂u, spec §3.9) that tilts the bump directions of a
+        // torus whose axis is not z; kept because bumped tori (stripe bevels) show it.
+        const Vec3 dpdv = frame_.FromCanonicalVector(Cross(facingNormal, out.dpdu));
+        if (LengthSquared(dpdv) > 0) out.dpdv = Normalize(dpdv);
     }
     return out;
 }

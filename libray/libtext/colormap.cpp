@@ -55,7 +55,7 @@ std::optional<ColorMap> ReadColorMap(const std::string& path, std::string& error
 }
 
 std::shared_ptr<const ColorMap> ReadColorMapArgument(ArgReader& args) {
-    std::string path = args.ReadFilename();
+    std::string path = args.ReadDataFilename();
     std::string error;
     std::optional<ColorMap> map = ReadColorMap(path, error);
     if (!map) args.Fail(error);

@@ -88,7 +88,7 @@ std::shared_ptr<const Image> ImageTexture::LoadShared(const std::string& path,
 }
 
 std::shared_ptr<Texture> ImageTexture::Create(ArgReader& args) {
-    std::string path = args.ReadFilename();
+    std::string path = args.ReadDataFilename();
     ImageTextureOptions options;
     for (;;) {
         if (args.Accept("component")) {
@@ -165,7 +165,8 @@ ImageTexture::Texel ImageTexture::Lookup(double u, double v) const {
 
 void ImageTexture::Apply(TextureContext& ctx, Surface& surface) const {
     SurfaceUV s = options_.mapping->Map(ctx);
-    Vec2 uv = TextureSpace(transform, ctx.time).UV(s.uv);
+    const TextureSpace space(transform, ctx.time);
+    Vec2 uv = space.UV(s.uv);
     if (!Covers(options_.tileU, options_.tileV, uv.u, uv.v)) return;
     double u = uv.u - std::floor(uv.u), v = uv.v - std::floor(uv.v);
 
@@ -176,6 +177,7 @@ void ImageTexture::Apply(TextureContext& ctx, Surface& surface) const {
         if (HasAlpha() && h0.alpha < kTransparentAlpha) return;
         double fu = options_.lo + (Fetch(ix + 1, iy).r - h0.r) * (options_.hi - options_.lo);
         double fv = options_.lo + (Fetch(ix, iy + 1).r - h0.r) * (options_.hi - options_.lo);
+        space.Derivatives(s.dpdu, s.dpdv, ctx.normal);
         ctx.normal = BumpNormal(ctx.normal, s.dpdu, s.dpdv, fu, fv);
         return;
     }

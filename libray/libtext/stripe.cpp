@@ -21,7 +21,8 @@ std::shared_ptr<Texture> StripeTexture::Create(ArgReader& args) {
 
 void StripeTexture::Apply(TextureContext& ctx, Surface& surface) const {
     SurfaceUV s = mapping_->Map(ctx);
-    Vec2 uv = TextureSpace(transform, ctx.time).UV(s.uv);
+    const TextureSpace space(transform, ctx.time);
+    Vec2 uv = space.UV(s.uv);
     double u = uv.u - std::floor(uv.u), v = uv.v - std::floor(uv.v);
     double w = width_;
     if (u > 2 * w && v > 2 * w && u <= 1 - w && v <= 1 - w) return;  // flat top
@@ -44,6 +45,7 @@ void StripeTexture::Apply(TextureContext& ctx, Surface& surface) const {
     } else {
         fu = 0, fv = bump_;
     }
+    space.Derivatives(s.dpdu, s.dpdv, ctx.normal);
     ctx.normal = BumpNormal(ctx.normal, s.dpdu, s.dpdv, fu, fv);
 }
 

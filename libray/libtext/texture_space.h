@@ -45,6 +45,25 @@ class TextureSpace {
         return {q.x, q.y};
     }
 
+    // Surface derivatives for the bump rule (BumpNormal) of a texture read through UV():
+    // the mapping's ∂P/∂u and ∂P/∂v (node space; n the unit normal completing the frame)
+    // become the derivatives with respect to the transformed pair. With the forward map's
+    // linear part M, (u, v, 0) = (u', v', w')·M, so by the chain rule ∂P/∂u' = M₀₀·∂P/∂u +
+    // M₀₁·∂P/∂v + M₀₂·n and ∂P/∂v' likewise with M's second row: `rotate 0 0 1 θ` turns
+    // the bump directions with the pattern, as in the original. Both leave normalised (a
+    // zero one stays zero, and BumpNormal then keeps the normal).
+    void Derivatives(Vec3& dpdu, Vec3& dpdv, const Vec3& n) const {
+        if (!identity_) {
+            const Vec3 rowU = transform_->ApplyVector({1, 0, 0});
+            const Vec3 rowV = transform_->ApplyVector({0, 1, 0});
+            const Vec3 du = dpdu, dv = dpdv;
+            dpdu = du * rowU.x + dv * rowU.y + n * rowU.z;
+            dpdv = du * rowV.x + dv * rowV.y + n * rowV.z;
+        }
+        if (LengthSquared(dpdu) > 0) dpdu = Normalize(dpdu);
+        if (LengthSquared(dpdv) > 0) dpdv = Normalize(dpdv);
+    }
+
   private:
     bool identity_;
     const Transform* transform_ = nullptr;

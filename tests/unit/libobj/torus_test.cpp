@@ -175,11 +175,13 @@ TEST(Torus, RandomRaysAgreeWithMarching) {
 }
 
 TEST(Torus, UV) {
-    SurfaceUV outer = kTorus.UV({2.5, 0, 0}, {}, {});
+    SurfaceUV outer = kTorus.UV({2.5, 0, 0}, {1, 0, 0}, {});
     EXPECT_NEAR(outer.uv.u, 0, 1e-12);
     EXPECT_NEAR(outer.uv.v, 0.5, 1e-12);
     ExpectVecNear(outer.dpdu, {0, 1, 0});
-    ExpectVecNear(outer.dpdv, {0, 0, 1});
+    ExpectVecNear(outer.dpdv, {0, 0, 1});  // facing normal × ∂u, as in the original
+    // Seen from inside the tube the facing normal points inward, and so ∂v turns over.
+    ExpectVecNear(kTorus.UV({2.5, 0, 0}, {-1, 0, 0}, {}).dpdv, {0, 0, -1});
     EXPECT_NEAR(kTorus.UV({1.5, 0, 0}, {}, {}).uv.v, 0, 1e-12);   // innermost ring
     EXPECT_NEAR(kTorus.UV({2, 0, -0.5}, {}, {}).uv.v, 0.25, 1e-12);
     EXPECT_NEAR(kTorus.UV({2, 0, 0.5}, {}, {}).uv.v, 0.75, 1e-12);

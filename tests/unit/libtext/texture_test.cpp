@@ -320,6 +320,20 @@ TEST(Stripe, TextureTransformActsOnUV) {
     EXPECT_EQ(surface.diffuse, Color(1, 0, 0));
 }
 
+TEST(Stripe, BevelsTurnWithARotatedPattern) {
+    // The bevel of BandsBevelsAndFlatTop at texture (u', v') = (0.15, 0.5), with the pattern
+    // turned by `rotate 0 0 1 90`: the point is (u', v')·M = (−0.5, 0.15), and the bumped
+    // normal is that test's (0.5, 0, 1) turned the same way (∂P/∂u' = ŷ, ∂P/∂v' = −x̂).
+    StripeTexture stripe(Plain(Color(0, 0, 1)), 0.1, 0.5,
+                         PlanarMapping::Make({0, 0, 0}, {0, 1, 0}, {1, 0, 0}));
+    stripe.transform.Append(*Transform::Rotate({0, 0, 1}, 90));
+    Surface surface = Plain(Color(1, 0, 0));
+    TextureContext ctx = At({-0.5, 0.15, 0});
+    stripe.Apply(ctx, surface);
+    EXPECT_EQ(surface.diffuse, Color(1, 0, 0));
+    ExpectVecNear(ctx.normal, Normalize({0, 0.5, 1}), 1e-12);
+}
+
 TEST(Windy, SumsOctavesAndScalesByWind) {
     // chaoscale 0 → W0 = 1; at the origin every DNoise is DNoise(0):
     // G = bs·D0 + (1 + hs)·D0 for two octaves, times (W0 + offset).

@@ -1,0 +1,58 @@
+#include "rayshade/checkpoint.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace rs {
+namespace {
+
+// No scene file to read: its hash is FNV-1a's offset basis.
+constexpr const char* kNoScene = "scene 1469598103934665603";
+
+std::string Fingerprint(const std::vector<std::string>& args) { return RenderFingerprint(args, ""); }
+
+TEST(Fingerprint, OneLinePerOptionWithItsArguments) {
+    EXPECT_EQ(Fingerprint({"-R", "256", "128", "-n", "in.ray", "-O", "out.png"}),
+              std::string("-R 256 128\n-n\nfile in.ray\n-O out.png\n") + kNoScene);
+}
+
+TEST(Fingerprint, LeavesOutWhatCannotChangeTheImage) {
+    EXPECT_EQ(Fingerprint({"-c", "-q", "-v", "-t", "3", "-V", "log", "-F", "8", "-O", "o.png"}),
+              Fingerprint({"-O", "o.png"}));
+}
+
+TEST(Fingerprint, TheDifferenceNamesTheOption) {
+    const std::string saved = Fingerprint({"-R", "320", "240", "-g", "-O", "o.png"});
+    EXPECT_EQ(DescribeFingerprintDifference(saved, saved), "");
+    EXPECT_EQ(DescribeFingerprintDifference(saved, Fingerprint({"-R", "256", "256", "-g", "-O", "o.png"})),
+              "it was saved with -R 320 240, not -R 256 256");
+    EXPECT_EQ(DescribeFingerprintDifference(saved, Fingerprint({"-R", "320", "240", "-O", "o.png"})),
+              "it was saved with -g, which this command lacks");
+    EXPECT_EQ(DescribeFingerprintDifference(saved, Fingerprint({"-R", "320", "240", "-g", "-n", "-O", "o.png"})),
+              "it was saved without -n, which this command gives");
+    std::string edited = saved;
+    edited.replace(edited.rfind(' ') + 1, std::string::npos, "42");
+    EXPECT_EQ(DescribeFingerprintDifference(saved, edited), "the scene file has changed since");
+}
+
+TEST(Fingerprint, LoadingAnotherRendersStateSaysWhatDiffers) {
+    const std::string path = ::testing::TempDir() + "rs_fingerprint_" + std::to_string(getpid()) + ".partial";
+    FrameState state;
+    state.width = 1;
+    state.rows = 2;
+    state.pixels.assign(2, PixelState{});
+    std::string error;
+    ASSERT_TRUE(SaveFrameState(path, Fingerprint({"-S", "4", "-O", "o.png"}), state, error)) << error;
+    FrameState loaded;
+    EXPECT_FALSE(LoadFrameState(path, Fingerprint({"-S", "2", "-O", "o.png"}), loaded, error));
+    EXPECT_EQ(error, "partial state '" + path + "' belongs to another render: it was saved with -S 4, "
+                     "not -S 2 (-c needs the same command and scene file)");
+    std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace rs
