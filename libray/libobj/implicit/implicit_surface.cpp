@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -11,220 +10,18 @@
 #include <vector>
 
 #include "libcommon/error.h"
-#include "libcommon/large_buffer.h"
-#include "libcommon/limits.h"
-#include "libcommon/name_index.h"
+#include "libobj/implicit/implicit_block.h"
+#include "libobj/implicit/implicit_syntax.h"
 #include "libcommon/stats.h"
 
 namespace rs {
 
-namespace {
-
-// The numbers of an implicit block, indexed in reading order: a plain value each, and the
-// expression of those that are animated (usually none).
-class DeclaredNumbers {
-  public:
-    size_t Size() const { return values_.size(); }
-    // Stores `v` at index Size().
-    size_t Add(AnimatedValue v) {
-        const size_t index = values_.size();
-        values_.push_back(v.value);
-        if (v.IsAnimated()) animated_.emplace_back(index, std::move(v.at));
-        return index;
-    }
-    bool IsAnimated(size_t index) const { return Expression(index) != nullptr; }
-    double At(size_t index, double time) const {
-        const std::function<double(double)>* at = Expression(index);
-        return at ? (*at)(time) : values_[index];
-    }
-
-  private:
-    const std::function<double(double)>* Expression(size_t index) const {
-        if (animated_.empty()) return nullptr;
-        const auto it = std::lower_bound(
-            animated_.begin(), animated_.end(), index,
-            [](const std::pair<size_t, std::function<double(double)>>& a, size_t i) {
-                return a.first < i;
-            });
-        return it != animated_.end() && it->first == index ? &it->second : nullptr;
-    }
-
-    std::vector<double, LargeBufferAllocator<double>> values_;
-    std::vector<std::pair<size_t, std::function<double(double)>>> animated_;  // by index
-};
-
-struct KernelSpec {
-    KernelKind kind = KernelKind::GascuelQuadratic;
-    // Indices of the parameters in DeclaredNumbers: thickness, stiffness, radius; blob:
-    // strength, radius (paramCount 2).
-    size_t params[3] = {};
-    int paramCount = 3;
-};
-
-enum class SkeletonKind : uint8_t { Point, Segment, Polyline, Circle, Triangle, Box, Cylinder };
-
-struct SkeletonSyntax {
-    SkeletonKind kind;
-    const char* keyword;
-    int arity;  // count of numbers; -1 for polyline, whose point count comes first
-};
-
-constexpr SkeletonSyntax kSkeletonSyntax[] = {
-    {SkeletonKind::Point, "point", 3},       {SkeletonKind::Segment, "segment", 6},
-    {SkeletonKind::Polyline, "polyline", -1}, {SkeletonKind::Circle, "circle", 7},
-    {SkeletonKind::Triangle, "triangle", 9}, {SkeletonKind::Box, "box", 6},
-    {SkeletonKind::Cylinder, "cylinder", 7}};
-
-// One skeleton as declared; its numbers, weight and kernel parameters are indices in the
-// block's DeclaredNumbers.
-struct ElementSpec {
-    SkeletonKind kind = SkeletonKind::Point;
-    size_t firstNumber = 0, numberCount = 0;  // in syntax order
-    size_t weight = 0;
-    size_t kernel = 0;  // index in Declaration::kernels
-};
-
-// An implicit block's skeletons (names[i] names elements[i]) with the numbers and kernels
-// they refer to.
-struct Declaration {
-    NameIndex names;
-    DeclaredNumbers numbers;
-    std::vector<KernelSpec> kernels;
-    std::vector<ElementSpec, LargeBufferAllocator<ElementSpec>> elements;
-};
-
-bool IsAnimated(const Declaration& d, const ElementSpec& e) {
-    const KernelSpec& k = d.kernels[e.kernel];
-    for (size_t i = e.firstNumber; i < e.firstNumber + e.numberCount; ++i) {
-        if (d.numbers.IsAnimated(i)) return true;
-    }
-    for (int i = 0; i < k.paramCount; ++i) {
-        if (d.numbers.IsAnimated(k.params[i])) return true;
-    }
-    return d.numbers.IsAnimated(e.weight);
-}
-
-Kernel MakeKernel(const KernelSpec& k, const DeclaredNumbers& numbers, double time) {
-    const double a = numbers.At(k.params[0], time), b = numbers.At(k.params[1], time);
-    switch (k.kind) {
-        case KernelKind::GascuelLinear:
-            return Kernel::GascuelLinear(a, b, numbers.At(k.params[2], time));
-        case KernelKind::GascuelQuadratic:
-            return Kernel::GascuelQuadratic(a, b, numbers.At(k.params[2], time));
-        default:
-            return Kernel::Blob(a, b);
-    }
-}
-
-// Builds the term of skeleton `element` at `time`; returns an error message instead when
-// the skeleton or the kernel is invalid.
-std::string MakeTerm(const Declaration& d, size_t element, double time, FieldTerm& term) {
-    const ElementSpec& e = d.elements[element];
-    const std::string& name = d.names.Name(element);
-    auto n = [&](size_t i) { return d.numbers.At(e.firstNumber + i, time); };
-    auto vec = [&n](size_t i) { return Vec3{n(i), n(i + 1), n(i + 2)}; };
-    const char* who = name.c_str();
-    switch (e.kind) {
-        case SkeletonKind::Point:
-            term.skeleton = PointSkeleton{vec(0)};
-            break;
-        case SkeletonKind::Segment:
-            term.skeleton = SegmentSkeleton{vec(0), vec(3)};
-            break;
-        case SkeletonKind::Polyline: {
-            PolylineSkeleton p;
-            p.points.reserve(e.numberCount / 3);
-            for (size_t i = 0; i + 2 < e.numberCount; i += 3) p.points.push_back(vec(i));
-            term.skeleton = std::move(p);
-            break;
-        }
-        case SkeletonKind::Circle: {
-            const double radius = n(0);
-            const Vec3 normal = vec(4);
-            if (!(radius > 0) || LengthSquared(normal) == 0) {
-                return StringPrintf(
-                    "skeleton '%s': circle needs a radius > 0 and a non-zero normal", who);
-            }
-            term.skeleton = CircleSkeleton{vec(1), Normalize(normal), radius};
-            break;
-        }
-        case SkeletonKind::Triangle:
-            term.skeleton = TriangleSkeleton{vec(0), vec(3), vec(6)};
-            break;
-        case SkeletonKind::Box: {
-            const Vec3 a = vec(0), b = vec(3);
-            term.skeleton = BoxSkeleton{Min(a, b), Max(a, b)};
-            break;
-        }
-        case SkeletonKind::Cylinder: {
-            const double radius = n(0);
-            if (!(radius >= 0)) {
-                return StringPrintf("skeleton '%s': cylinder radius must be >= 0", who);
-            }
-            term.skeleton = CylinderSkeleton{vec(1), vec(4), radius};
-            break;
-        }
-    }
-    term.name = name;
-    term.weight = d.numbers.At(e.weight, time);
-    term.kernel = MakeKernel(d.kernels[e.kernel], d.numbers, time);
-    if (!std::isfinite(term.weight)) {
-        return StringPrintf("skeleton '%s': weight is not finite", who);
-    }
-    KernelStatus status = term.kernel.Validate(name);
-    return status.ok ? std::string() : status.message;
-}
-
-// Reads the kernel of a `field` statement, storing its parameters in `numbers`.
-KernelSpec ReadKernel(ArgReader& args, DeclaredNumbers& numbers) {
-    KernelSpec k;
-    if (args.Accept("linear")) {
-        k.kind = KernelKind::GascuelLinear;
-    } else if (args.Accept("quadratic")) {
-        k.kind = KernelKind::GascuelQuadratic;
-    } else if (args.Accept("blob")) {
-        k.kind = KernelKind::Blob;
-        k.paramCount = 2;
-    } else {
-        args.Fail("expected linear, quadratic or blob after 'field'");
-    }
-    for (int i = 0; i < k.paramCount; ++i) k.params[i] = numbers.Add(args.ReadAnimatedNumber());
-    return k;
-}
-
-}  // namespace
-
 bool ImplicitSurface::IsBlockWord(const std::string& word) {
-    static const char* const kStatements[] = {"threshold", "tolerance", "octree",
-                                              "method",    "field",     "blend",
-                                              "contact",   "propagation", "end"};
-    for (const char* w : kStatements)
-        if (word == w) return true;
-    for (const SkeletonSyntax& s : kSkeletonSyntax)
-        if (word == s.keyword) return true;
-    return false;
+    return IsImplicitStatementWord(word);
 }
 
-namespace {
-
-// True when the next token starts a statement of the block (or ends it), so open-ended
-// name lists stop there.
-bool PeekStatement(ArgReader& args) {
-    for (const char* word :
-         {"end", "threshold", "tolerance", "octree", "method", "field", "blend", "contact",
-          "propagation"}) {
-        if (args.Peek(word)) return true;
-    }
-    for (const SkeletonSyntax& s : kSkeletonSyntax) {
-        if (args.Peek(s.keyword)) return true;
-    }
-    return args.PeekNumber();
-}
-
-// Settings of a method, keeping the declared depth, Dratio and tolerance of `declared`
-// (kb89's heuristics for kb89; the patches defaults otherwise, unused by the baselines).
-OctreeSettings MethodSettings(ImplicitMethod method, const OctreeSettings& declared,
-                              double patchesDRatio) {
+OctreeSettings MethodOctreeSettings(ImplicitMethod method, const OctreeSettings& declared,
+                                    double patchesDRatio) {
     const bool kb89 = method == ImplicitMethod::Kb89;
     OctreeSettings s = kb89 ? OctreeSettings::Kb89() : OctreeSettings{};
     s.maxDepth = declared.maxDepth;
@@ -236,6 +33,8 @@ OctreeSettings MethodSettings(ImplicitMethod method, const OctreeSettings& decla
     s.autoToleranceCap = declared.autoToleranceCap;
     return s;
 }
+
+namespace {
 
 constexpr const char kCounterPrefix[] = "Implicit ";
 constexpr const char kOctreeCounterPrefix[] = "Implicit octree ";
@@ -282,7 +81,7 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
             if (!error.empty()) return label_ + ": " + error;
         }
         options_.method = method;
-        options_.octree = MethodSettings(options_.method, options_.octree, options_.patchesDRatio);
+        options_.octree = MethodOctreeSettings(options_.method, options_.octree, options_.patchesDRatio);
     }
     if (overrides.maxDepth) {
         options_.octree.maxDepth = *overrides.maxDepth;
@@ -547,264 +346,12 @@ void ImplicitSurface::BuildBvh(int index, int first, int count) {
     BuildBvh(left + 1, first + count / 2, count - count / 2);
 }
 
-namespace {
-
-// An implicit block as read: its options (the method possibly still Auto) and skeletons.
-struct ImplicitBlock {
-    ImplicitOptions options;
-    Declaration declaration;
-    bool blendsOrContacts = false;
-};
-
-// Reads the block syntax of ImplicitSurface::Create, failing as it documents.
-ImplicitBlock ReadBlock(ArgReader& args) {
-    ImplicitBlock block;
-    ImplicitOptions& options = block.options;
-    options.autoDepth = true;
-    options.method = ImplicitMethod::Auto;  // resolved once the terms are known
-    bool autoTolerance = true;
-    int maxDepth = options.octree.maxDepth;
-    double dRatio = options.octree.dRatio, tolerance = options.octree.tolerance;
-    DeclaredNumbers& numbers = block.declaration.numbers;
-    std::vector<KernelSpec>& kernels = block.declaration.kernels;
-    auto& elements = block.declaration.elements;
-    const size_t one = numbers.Add({1, {}});
-    // `field quadratic 1 1 2` (m = k(R − e) = 1) until a `field` statement.
-    kernels.push_back({KernelKind::GascuelQuadratic, {one, one, numbers.Add({2, {}})}, 3});
-    size_t defaultKernel = 0;
-    NameIndex& skeletons = block.declaration.names;
-    std::vector<std::vector<std::string>> blends;
-    std::vector<std::pair<std::string, std::string>> contacts;
-    struct PropagationSpec {
-        std::string name;
-        double width = 0, height = 0.5;
-    };
-    std::vector<PropagationSpec> propagations;
-    while (!args.Accept("end")) {
-        if (args.Accept("threshold")) {
-            options.threshold = args.ReadNumber();
-            if (!(options.threshold > 0)) args.Fail("implicit threshold must be > 0");
-        } else if (args.Accept("tolerance")) {
-            autoTolerance = args.Accept("auto");
-            if (!autoTolerance) {
-                tolerance = args.ReadNumber();
-                if (!(tolerance > 0)) args.Fail("implicit tolerance must be > 0");
-            }
-        } else if (args.Accept("octree")) {
-            options.autoDepth = args.Accept("auto");
-            if (!options.autoDepth) {
-                maxDepth = args.ReadInt();
-                if (maxDepth < 0 || maxDepth > 16) args.Fail("octree depth must be in [0, 16]");
-            }
-            if (args.PeekNumber()) dRatio = args.ReadNumber();
-        } else if (args.Accept("method")) {
-            // Accept() rather than a name: method words such as `sphere` are keywords of the
-            // scene language.
-            const MethodEntry* chosen = nullptr;
-            for (const MethodEntry& entry : MethodRegistry()) {
-                if (args.Accept(entry.name)) {
-                    chosen = &entry;
-                    break;
-                }
-            }
-            if (!chosen) args.Fail("expected a method after 'method': " + ImplicitMethodNames());
-            options.method = chosen->method;
-            if (options.method == ImplicitMethod::March && args.PeekNumber()) {
-                options.marchStep = args.ReadNumber();
-                if (!(options.marchStep > 0)) args.Fail("the march step must be > 0");
-            }
-        } else if (args.Accept("field")) {
-            kernels.push_back(ReadKernel(args, numbers));
-            defaultKernel = kernels.size() - 1;
-        } else if (args.Accept("blend")) {
-            std::vector<std::string> names{args.ReadName(), args.ReadName()};
-            while (!PeekStatement(args)) names.push_back(args.ReadName());
-            blends.push_back(std::move(names));
-        } else if (args.Accept("contact")) {
-            std::string a = args.ReadName();
-            contacts.emplace_back(a, args.ReadName());
-        } else if (args.Accept("propagation")) {
-            PropagationSpec p;
-            p.name = args.ReadName();
-            p.width = args.ReadNumber();
-            if (!(p.width >= 0)) args.Fail("propagation width must be >= 0");
-            if (args.PeekNumber()) {
-                p.height = args.ReadNumber();
-                if (!(p.height >= 0 && p.height <= 1)) {
-                    args.Fail("propagation height must be in [0, 1]");
-                }
-            }
-            propagations.push_back(p);
-        } else {
-            const SkeletonSyntax* syntax = nullptr;
-            for (const SkeletonSyntax& s : kSkeletonSyntax) {
-                if (args.Accept(s.keyword)) {
-                    syntax = &s;
-                    break;
-                }
-            }
-            if (!syntax) {
-                args.Fail("expected a skeleton (point, segment, polyline, circle, triangle, box, "
-                          "cylinder), blend, contact, propagation, field, threshold, tolerance, "
-                          "octree, method or end");
-            }
-            ElementSpec e;
-            e.kind = syntax->kind;
-            if (const std::string name = args.ReadName(); !skeletons.Insert(name)) {
-                args.Fail("skeleton name '" + name + "' used twice");
-            }
-            const std::string& name = skeletons.Name(elements.size());
-            int count = syntax->arity;
-            if (count < 0) {
-                int points = args.ReadInt();
-                if (points < 2) args.Fail("polyline '" + name + "' needs at least 2 points");
-                // Each point is three numbers of the input, so a count beyond what any input
-                // holds only overflows 3·points (Limits().polylinePoints, raised with
-                // -L polylinePoints=N, never beyond what 3·points in an int allows).
-                const long maxPoints = std::min<long>(Limits().polylinePoints, INT_MAX / 3);
-                if (points > maxPoints)
-                    args.Fail(StringPrintf("polyline '%s' has more than %ld points", name.c_str(),
-                                           maxPoints));
-                count = 3 * points;
-            }
-            e.firstNumber = numbers.Size();
-            e.numberCount = static_cast<size_t>(count);
-            for (int i = 0; i < count; ++i) numbers.Add(args.ReadAnimatedNumber());
-            e.weight = one;
-            e.kernel = defaultKernel;
-            for (;;) {
-                if (args.Accept("weight")) {
-                    e.weight = numbers.Add(args.ReadAnimatedNumber());
-                } else if (args.Accept("field")) {
-                    kernels.push_back(ReadKernel(args, numbers));
-                    e.kernel = kernels.size() - 1;
-                } else {
-                    break;
-                }
-            }
-            elements.push_back(std::move(e));
-        }
-    }
-    if (!blends.empty()) {
-        options.blendMode = BlendMode::Explicit;
-        for (const std::vector<std::string>& names : blends) {
-            std::vector<int> listed;
-            for (const std::string& n : names) {
-                const long i = skeletons.Find(n);
-                if (i < 0) args.Fail("blend names unknown skeleton '" + n + "'");
-                listed.push_back(static_cast<int>(i));
-            }
-            for (size_t i = 0; i < listed.size(); ++i) {
-                for (size_t j = i + 1; j < listed.size(); ++j) {
-                    options.blendPairs.emplace_back(listed[i], listed[j]);
-                }
-            }
-        }
-    }
-    if (!blends.empty() && options.method != ImplicitMethod::Patches &&
-        options.method != ImplicitMethod::Auto) {
-        args.Warn(StringPrintf("'blend' is ignored with 'method %s' (one field, everything "
-                               "blends)",
-                               ImplicitMethodName(options.method)));
-    }
-    for (const auto& [a, b] : contacts) {
-        for (const std::string& n : {a, b}) {
-            if (skeletons.Find(n) < 0) args.Fail("contact names unknown skeleton '" + n + "'");
-        }
-        if (a == b) args.Fail("contact needs two different skeletons, not '" + a + "' twice");
-        const int ia = static_cast<int>(skeletons.Find(a));
-        const int ib = static_cast<int>(skeletons.Find(b));
-        for (auto [x, y] : options.blendPairs) {
-            if ((x == ia && y == ib) || (x == ib && y == ia)) {
-                args.Fail("skeletons '" + a + "' and '" + b + "' both blend and are in contact");
-            }
-        }
-        options.contacts.push_back({ia, ib});
-    }
-    for (const PropagationSpec& p : propagations) {
-        const int term = static_cast<int>(skeletons.Find(p.name));
-        if (term < 0) args.Fail("propagation names unknown skeleton '" + p.name + "'");
-        bool inContact = std::any_of(options.contacts.begin(), options.contacts.end(),
-                                     [term](const ContactPair& c) {
-                                         return c.a == term || c.b == term;
-                                     });
-        if (!inContact) args.Warn("propagation of '" + p.name + "', which is in no contact");
-        options.propagations.push_back({term, p.width, p.height});
-    }
-    if (!contacts.empty() && options.method != ImplicitMethod::Patches &&
-        options.method != ImplicitMethod::Auto) {
-        args.Warn(StringPrintf("'contact' is ignored with 'method %s' (one field, everything "
-                               "blends)",
-                               ImplicitMethodName(options.method)));
-    }
-    OctreeSettings declared;
-    declared.maxDepth = maxDepth;
-    declared.tolerance = tolerance;
-    declared.minWidth = tolerance;
-    declared.autoTolerance = autoTolerance;
-    options.patchesDRatio = dRatio;
-    options.octree = MethodSettings(options.method, declared, dRatio);
-    block.blendsOrContacts = !blends.empty() || !contacts.empty();
-    return block;
-}
-
-// Builds the terms of every skeleton at `time` into `terms` (empty); returns the first
-// skeleton's error instead (MakeTerm), or empty.
-std::string MakeTerms(const Declaration& d, double time, std::vector<FieldTerm>& terms) {
-    terms.reserve(d.elements.size());
-    AdviseHugePages(terms.data(), terms.capacity() * sizeof(FieldTerm));
-    for (size_t i = 0; i < d.elements.size(); ++i) {
-        std::string error = MakeTerm(d, i, time, terms.emplace_back());
-        if (!error.empty()) return error;
-    }
-    return {};
-}
-
-}  // namespace
-
 std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
-    ImplicitOptions options;
-    std::vector<FieldTerm> terms;
-    std::function<std::vector<FieldTerm>(double)> termsAt;
-    bool blendsOrContacts = false;
-    {
-        ImplicitBlock block = ReadBlock(args);
-        const Declaration& declaration = block.declaration;
-        if (std::string error = MakeTerms(declaration, 0, terms); !error.empty()) {
-            args.Fail(error);
-        }
-        bool animated = false, anyPositive = false;
-        for (size_t i = 0; i < terms.size(); ++i) {
-            const ElementSpec& e = declaration.elements[i];
-            animated |= IsAnimated(declaration, e);
-            anyPositive |= terms[i].weight > 0 || declaration.numbers.IsAnimated(e.weight);
-        }
-        if (!anyPositive) {
-            args.Warn("implicit object without a skeleton of positive weight, discarded");
-            return nullptr;
-        }
-        if (animated) {
-            termsAt = [declaration = std::move(block.declaration)](double time) {
-                std::vector<FieldTerm> out;
-                if (std::string error = MakeTerms(declaration, time, out); !error.empty()) {
-                    Report(Severity::Abort, {}, "implicit object at time %g: %s", time,
-                           error.c_str());
-                }
-                return out;
-            };
-        }
-        options = std::move(block.options);
-        blendsOrContacts = block.blendsOrContacts;
-    }  // a static block's declaration is released before the build
-    if (options.method == ImplicitMethod::Auto) {
-        options.method = ResolveAutoMethod(terms, blendsOrContacts);
-    }
-    if (const MethodEntry& entry = MethodEntryOf(options.method); entry.check) {
-        std::string error = entry.check(terms);
-        if (!error.empty()) args.Fail(error);
-    }
-    auto surface = std::make_shared<ImplicitSurface>(std::move(terms), std::move(options));
-    surface->termsAt_ = std::move(termsAt);
+    BuiltImplicitBlock block = BuildImplicitBlock(ReadImplicitBlock(args), args);
+    if (block.terms.empty()) return nullptr;  // discarded (BuildImplicitBlock warned)
+    auto surface =
+        std::make_shared<ImplicitSurface>(std::move(block.terms), std::move(block.options));
+    surface->termsAt_ = std::move(block.termsAt);
     return surface;
 }
 

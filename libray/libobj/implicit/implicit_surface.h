@@ -90,6 +90,12 @@ struct ImplicitOptions {
     std::vector<Propagation> propagations;
 };
 
+// The octree settings of `method` (kb89's heuristics for kb89, the patches defaults
+// otherwise, unused by the baselines), keeping the declared depth and tolerance of
+// `declared` and, but for kb89, the declared Dratio.
+OctreeSettings MethodOctreeSettings(ImplicitMethod method, const OctreeSettings& declared,
+                                    double patchesDRatio);
+
 // The field, gradient and bound evaluations this thread has made inside lazy octree builds
 // so far; callers counting a ray's evaluations by ThreadCount differences subtract it.
 uint64_t ImplicitBuildEvaluations();
