@@ -1,43 +1,10 @@
 // Layer 8 of the implicit module: the `implicit` primitive (Gascuel 1995, "Implicit
 // Patches"), the only file of the module that knows libobj. Compiled into ray_obj.
 //
-// Scene syntax, after `implicit [surface]`, until `end` (see README.md in this folder):
-//   threshold T            iso-value (default 1; must be > 0). Inside: F > T.
-//   tolerance auto|Eps     root accuracy. auto (default): an eighth of the ray's footprint
-//                          (ray.h; the pixel's width at the hit for rendered rays) capped at
-//                          1e-6, and 1e-7 in object-space distance on rays without one (the
-//                          baselines always use 1e-7); Eps: fixed, in object-space distance
-//   octree auto|MaxDepth [Dratio]   octree depth: auto (default, patches) from each
-//                          skeleton's thickness (AutoMinDepth), or the depth limit (6 for
-//                          auto with kb89) with minimum depth 3; and Gascuel's Dratio (2)
-//   method patches|kb89|march [Step]|sphere|segment|polynomial|exact
-//                          patches (default): one LG octree per implicit patch, improved
-//                          heuristics; kb89: one octree over the whole sum with Kalra &
-//                          Barr's heuristics only; the others are the baselines of
-//                          method_registry.h on the plain sum (README.md, "Methods"). Blend
-//                          statements are ignored by every method but patches.
-//   field linear|quadratic Thickness Stiffness Radius  |  field blob Strength Radius
-//                          default kernel of the skeletons that follow (initially
-//                          `field quadratic 1 1 2`)
-//   point Name X Y Z                         segment Name X1 Y1 Z1 X2 Y2 Z2
-//   polyline Name N X1 Y1 Z1 ... XN YN ZN    circle Name Radius X Y Z Nx Ny Nz
-//   triangle Name X1 Y1 Z1 X2 Y2 Z2 X3 Y3 Z3 box Name Xlo Ylo Zlo Xhi Yhi Zhi
-//   cylinder Name Radius X1 Y1 Z1 X2 Y2 Z2
-//     each skeleton optionally followed by `weight W` (default 1; negative carves) and/or
-//     its own `field ...`
-//   blend Name Name [Name...]   every pair of the listed skeletons blends. Without any
-//                          blend statement all overlapping skeletons blend (automatic
-//                          neighbour lists); with one or more, only declared pairs do
-//                          (a negative skeleton then carves only those it blends with).
-//   contact NameA NameB    the patches of skeletons NameA and NameB collide (contact.h): they
-//                          never blend, and each is deformed by the other's field so both
-//                          surfaces meet exactly on the contact surface (compression)
-//   propagation Name Width [Height]   gives Name's patch an attenuation zone of geometric
-//                          width Width >= 0 around its contact zone, with a smooth bulge of
-//                          relative height Height in [0, 1] (default 0.5); see contact.h
-//   end
-// Skeleton numbers, weights and field parameters may be animated expressions; the object
-// is then rebuilt by PrepareFrame for each frame (Bounds() describes the current frame).
+// The scene syntax is read by implicit_syntax.h and documented in
+// docs/implicit-reference.md. Skeleton numbers, weights and field parameters may be
+// time-varying; the object is then rebuilt by PrepareFrame for each frame (Bounds()
+// describes the current frame).
 //
 // Statistics: each object is labelled "Implicit object N" (N = 1, 2, ... in order of
 // creation) and counts, under "<label>: ...", its preprocessing time (microseconds), octree

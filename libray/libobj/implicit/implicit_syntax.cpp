@@ -39,13 +39,40 @@ struct SkeletonSyntax {
     SkeletonKind kind;
     const char* keyword;
     int arity;  // count of numbers; -1 for polyline, whose point count comes first
+    const char* syntax;
 };
 
 constexpr SkeletonSyntax kSkeletonSyntax[] = {
-    {SkeletonKind::Point, "point", 3},       {SkeletonKind::Segment, "segment", 6},
-    {SkeletonKind::Polyline, "polyline", -1}, {SkeletonKind::Circle, "circle", 7},
-    {SkeletonKind::Triangle, "triangle", 9}, {SkeletonKind::Box, "box", 6},
-    {SkeletonKind::Cylinder, "cylinder", 7}};
+    {SkeletonKind::Point, "point", 3, "point Name X Y Z"},
+    {SkeletonKind::Segment, "segment", 6, "segment Name X1 Y1 Z1 X2 Y2 Z2"},
+    {SkeletonKind::Polyline, "polyline", -1, "polyline Name N X1 Y1 Z1 ... XN YN ZN"},
+    {SkeletonKind::Circle, "circle", 7, "circle Name Radius X Y Z Nx Ny Nz"},
+    {SkeletonKind::Triangle, "triangle", 9, "triangle Name X1 Y1 Z1 X2 Y2 Z2 X3 Y3 Z3"},
+    {SkeletonKind::Box, "box", 6, "box Name Xlo Ylo Zlo Xhi Yhi Zhi"},
+    {SkeletonKind::Cylinder, "cylinder", 7, "cylinder Name Radius X1 Y1 Z1 X2 Y2 Z2"}};
+
+struct KernelSyntax {
+    KernelKind kind;
+    const char* keyword;
+    int paramCount;
+    const char* syntax;
+};
+
+constexpr KernelSyntax kKernelSyntax[] = {
+    {KernelKind::GascuelLinear, "linear", 3, "field linear e k R"},
+    {KernelKind::GascuelQuadratic, "quadratic", 3, "field quadratic e k R"},
+    {KernelKind::Blob, "blob", 2, "field blob s R"}};
+
+// The other words the reader accepts after a statement word (the method names come from
+// the method registry).
+constexpr const char kWeight[] = "weight";
+constexpr const char kAuto[] = "auto";
+constexpr const char kHubSeparator[] = ":";
+const ImplicitKeyword kModifierWords[] = {
+    {kWeight, "after a skeleton's numbers: weight W"},
+    {kAuto, "tolerance auto, octree auto"},
+    {kHubSeparator, "blend Hub : Name [Name...]"},
+};
 
 class BlockReader;
 using StatementRead = void (BlockReader::*)(const SourceLocation& where);
@@ -110,24 +137,6 @@ const StatementSyntax kStatements[] = {
     {"end", "end", nullptr},
 };
 
-// Words the block accepts after a statement word (ImplicitBlockKeywords lists them with the
-// statements and the method names).
-const ImplicitKeyword kArgumentWords[] = {
-    {"point", "point Name X Y Z"},
-    {"segment", "segment Name X1 Y1 Z1 X2 Y2 Z2"},
-    {"polyline", "polyline Name N X1 Y1 Z1 ... XN YN ZN"},
-    {"circle", "circle Name Radius X Y Z Nx Ny Nz"},
-    {"triangle", "triangle Name X1 Y1 Z1 X2 Y2 Z2 X3 Y3 Z3"},
-    {"box", "box Name Xlo Ylo Zlo Xhi Yhi Zhi"},
-    {"cylinder", "cylinder Name Radius X1 Y1 Z1 X2 Y2 Z2"},
-    {"weight", "after a skeleton: weight W"},
-    {"linear", "field linear e k R"},
-    {"quadratic", "field quadratic e k R"},
-    {"blob", "field blob s R"},
-    {"auto", "tolerance auto, octree auto, method auto"},
-    {":", "blend Hub : Name [Name...]"},
-};
-
 // The edit distance between two words (for "did you mean").
 size_t EditDistance(std::string_view a, std::string_view b) {
     std::vector<size_t> row(b.size() + 1);
@@ -151,7 +160,9 @@ const std::vector<ImplicitKeyword>& ImplicitBlockKeywords() {
     static const std::vector<ImplicitKeyword> words = [] {
         std::vector<ImplicitKeyword> out;
         for (const StatementSyntax& s : kStatements) out.push_back({s.word, s.syntax});
-        for (const ImplicitKeyword& k : kArgumentWords) out.push_back(k);
+        for (const SkeletonSyntax& s : kSkeletonSyntax) out.push_back({s.keyword, s.syntax});
+        for (const KernelSyntax& k : kKernelSyntax) out.push_back({k.keyword, k.syntax});
+        for (const ImplicitKeyword& k : kModifierWords) out.push_back(k);
         for (const MethodEntry& m : MethodRegistry()) out.push_back({m.name, "method"});
         return out;
     }();
@@ -198,7 +209,7 @@ void BlockReader::ReadThreshold(const SourceLocation& where) {
 
 void BlockReader::ReadTolerance(const SourceLocation& where) {
     NoteSetting("tolerance", where);
-    d_.settings.autoTolerance = args_.Accept("auto");
+    d_.settings.autoTolerance = args_.Accept(kAuto);
     if (d_.settings.autoTolerance) return;
     d_.settings.tolerance = args_.ReadNumber();
     if (!(d_.settings.tolerance > 0)) args_.FailAtLocation(where, "implicit tolerance must be > 0");
@@ -206,7 +217,7 @@ void BlockReader::ReadTolerance(const SourceLocation& where) {
 
 void BlockReader::ReadOctree(const SourceLocation& where) {
     NoteSetting("octree", where);
-    d_.settings.autoDepth = args_.Accept("auto");
+    d_.settings.autoDepth = args_.Accept(kAuto);
     if (!d_.settings.autoDepth) {
         d_.settings.maxDepth = args_.ReadInt();
         if (d_.settings.maxDepth < 0 || d_.settings.maxDepth > 16) {
@@ -241,16 +252,16 @@ void BlockReader::ReadMethod(const SourceLocation& where) {
 KernelSpec BlockReader::ReadKernel(const SourceLocation& where) {
     KernelSpec k;
     k.place = Place(where);
-    if (args_.Accept("linear")) {
-        k.kind = KernelKind::GascuelLinear;
-    } else if (args_.Accept("quadratic")) {
-        k.kind = KernelKind::GascuelQuadratic;
-    } else if (args_.Accept("blob")) {
-        k.kind = KernelKind::Blob;
-        k.paramCount = 2;
-    } else {
-        args_.FailAtLocation(where, "expected linear, quadratic or blob after 'field'");
+    const KernelSyntax* syntax = nullptr;
+    for (const KernelSyntax& candidate : kKernelSyntax) {
+        if (args_.Accept(candidate.keyword)) {
+            syntax = &candidate;
+            break;
+        }
     }
+    if (!syntax) args_.FailAtLocation(where, "expected linear, quadratic or blob after 'field'");
+    k.kind = syntax->kind;
+    k.paramCount = syntax->paramCount;
     for (int i = 0; i < k.paramCount; ++i) {
         k.params[i] = d_.numbers.Add(args_.ReadAnimatedNumber());
     }
@@ -288,7 +299,7 @@ void BlockReader::ReadBlend(const SourceLocation& where) {
     BlendSpec blend;
     blend.place = Place(where);
     std::string first = ReadSkeletonName("a skeleton name");
-    if (args_.Accept(":")) {
+    if (args_.Accept(kHubSeparator)) {
         blend.hub = std::move(first);
     } else {
         blend.names.push_back(std::move(first));
@@ -296,7 +307,7 @@ void BlockReader::ReadBlend(const SourceLocation& where) {
     // An open-ended list: it stops at the next statement word (or a number, an error then).
     do {
         blend.names.push_back(ReadSkeletonName("a skeleton name"));
-    } while (args_.PeekWord() && !args_.Peek(":") &&
+    } while (args_.PeekWord() && !args_.Peek(kHubSeparator) &&
              std::none_of(std::begin(kStatements), std::end(kStatements),
                           [&](const StatementSyntax& s) { return args_.Peek(s.word); }) &&
              std::none_of(std::begin(kSkeletonSyntax), std::end(kSkeletonSyntax),
@@ -361,7 +372,7 @@ void BlockReader::ReadSkeleton(const SkeletonSyntax& syntax, const SourceLocatio
     defaultKernelUsed_ = true;
     for (;;) {
         const SourceLocation modifier = args_.NextLocation();
-        if (args_.Accept("weight")) {
+        if (args_.Accept(kWeight)) {
             e.weight = d_.numbers.Add(args_.ReadAnimatedNumber());
         } else if (args_.Accept("field")) {
             d_.kernels.push_back(ReadKernel(modifier));
@@ -380,7 +391,7 @@ std::string BlockReader::UnknownStatement() {
     list.resize(list.size() - 2);
     if (!args_.PeekWord()) return "expected a statement of the implicit block (" + list + ")";
     const std::string word = args_.ReadWord();
-    if (word == "weight") return "'weight' must follow a skeleton's numbers (or its 'field')";
+    if (word == kWeight) return "'weight' must follow a skeleton's numbers (or its 'field')";
     std::string nearest;
     size_t best = 3;  // suggest only words within two edits
     for (const ImplicitKeyword& k : ImplicitBlockKeywords()) {

@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -215,6 +219,90 @@ TEST(ImplicitSyntax, DescriptionKeepsStatementsInOrderWithTheirLines) {
     ASSERT_EQ(d.contacts.size(), 1u);
     ASSERT_EQ(d.propagations.size(), 1u);
     EXPECT_EQ(d.propagations[0].height, 0.5);  // the default
+}
+
+// The reference page (docs/implicit-reference.md) cannot drift from the parser: every
+// example block of it parses without a diagnostic, and every word the block's reader
+// accepts appears in its code.
+std::string ReferencePage() {
+    std::ifstream in(RAYSHADE_REFERENCE_PAGE);
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_FALSE(text.str().empty()) << RAYSHADE_REFERENCE_PAGE;
+    return text.str();
+}
+
+// The ```ray blocks of a Markdown page.
+std::vector<std::string> RayBlocks(const std::string& page) {
+    std::vector<std::string> blocks;
+    std::istringstream lines(page);
+    std::string line, block;
+    bool inside = false;
+    while (std::getline(lines, line)) {
+        if (!inside && line == "```ray") {
+            inside = true;
+            block.clear();
+        } else if (inside && line == "```") {
+            inside = false;
+            blocks.push_back(block);
+        } else if (inside) {
+            block += line + "\n";
+        }
+    }
+    return blocks;
+}
+
+// The words of the page's code: inline `spans`, fenced blocks and indented lines, split at
+// white space and at the brackets and bars of syntax summaries.
+std::set<std::string> CodeWords(const std::string& page) {
+    std::string code;
+    std::istringstream lines(page);
+    std::string line;
+    bool fenced = false;
+    while (std::getline(lines, line)) {
+        if (line.rfind("```", 0) == 0) {
+            fenced = !fenced;
+            continue;
+        }
+        if (fenced || line.rfind("    ", 0) == 0) {
+            code += line + "\n";
+            continue;
+        }
+        for (size_t open = line.find('`'); open != std::string::npos;) {
+            const size_t close = line.find('`', open + 1);
+            if (close == std::string::npos) break;
+            code += line.substr(open + 1, close - open - 1) + "\n";
+            open = line.find('`', close + 1);
+        }
+    }
+    for (char& c : code) {
+        if (std::strchr("[]{}()|,", c)) c = ' ';
+    }
+    std::set<std::string> words;
+    std::istringstream split(code);
+    for (std::string w; split >> w;) words.insert(w);
+    return words;
+}
+
+TEST(ImplicitReference, EveryExampleOfThePageParsesCleanly) {
+    const std::vector<std::string> blocks = RayBlocks(ReferencePage());
+    EXPECT_GE(blocks.size(), 12u);  // one per statement at least
+    for (const std::string& block : blocks) {
+        Parsed p = ParseDiagnostics(block);
+        EXPECT_FALSE(p.fatal) << block;
+        EXPECT_TRUE(p.messages.empty()) << block << p.messages.front();
+    }
+}
+
+TEST(ImplicitReference, EveryKeywordOfTheParserIsDocumented) {
+    const std::set<std::string> documented = CodeWords(ReferencePage());
+    ASSERT_FALSE(ImplicitBlockKeywords().empty());
+    for (const ImplicitKeyword& k : ImplicitBlockKeywords()) {
+        EXPECT_TRUE(documented.count(k.word)) << "'" << k.word << "' (" << k.syntax
+                                              << ") is accepted but not documented";
+    }
+    // The checker itself: a word absent from the page is reported.
+    EXPECT_FALSE(documented.count("gaussian"));
 }
 
 }  // namespace
