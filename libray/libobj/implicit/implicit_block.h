@@ -9,7 +9,7 @@
 
 #include "libcommon/arg_reader.h"
 #include "libobj/implicit/field.h"
-#include "libobj/implicit/implicit_surface.h"
+#include "libobj/implicit/implicit_options.h"
 #include "libobj/implicit/implicit_syntax.h"
 
 namespace rs {

@@ -1,10 +1,6 @@
 #include "libobj/implicit/implicit_overrides.h"
 
-#include <set>
-
 #include "libcommon/error.h"
-#include "libobj/implicit/implicit_surface.h"
-#include "libobj/object.h"
 
 namespace rs {
 
@@ -29,28 +25,6 @@ constexpr SwitchEntry kSwitches[] = {
     {"2bis", &OctreeSettings::useTest2bis},
     {"t3", &OctreeSettings::useTest3},
 };
-
-bool Apply(Object& node, const ImplicitOverrides& overrides, std::set<const Object*>& seen,
-           int& count, std::string& error) {
-    if (!seen.insert(&node).second) return true;
-    switch (node.kind()) {
-        case Object::Kind::Primitive:
-            if (auto* implicit = dynamic_cast<ImplicitSurface*>(node.primitive())) {
-                error = implicit->ApplyOverrides(overrides);
-                if (!error.empty()) return false;
-                ++count;
-            }
-            return true;
-        case Object::Kind::Aggregate:
-            for (const std::shared_ptr<Object>& child : node.aggregate()->Children()) {
-                if (!Apply(*child, overrides, seen, count, error)) return false;
-            }
-            return true;
-        case Object::Kind::Instance:
-            return Apply(*node.instanceOf(), overrides, seen, count, error);
-    }
-    return true;
-}
 
 }  // namespace
 
@@ -89,14 +63,6 @@ bool ParseOctreeSwitch(const std::string& assignment, ImplicitOverrides& overrid
     }
     overrides.switches.emplace_back(name, value == "on");
     return true;
-}
-
-int ApplyImplicitOverrides(Object& root, const ImplicitOverrides& overrides, std::string& error) {
-    std::set<const Object*> seen;
-    int count = 0;
-    error.clear();
-    if (!Apply(root, overrides, seen, count, error)) return -1;
-    return count;
 }
 
 }  // namespace rs

@@ -14,11 +14,17 @@
 #include <vector>
 
 #include "libobj/blob.h"
+#include "libobj/implicit/patches_method.h"
 #include "token_reader.h"
 #include "libsurf/surface.h"
 
 namespace rs {
 namespace {
+
+// The patches of an object searched by method patches.
+const PatchesMethod& PatchesOf(const ImplicitSurface& surface) {
+    return dynamic_cast<const PatchesMethod&>(surface.SearchMethod());
+}
 
 std::shared_ptr<Primitive> Parse(const std::string& text) {
     TokenReader reader(text);
@@ -137,7 +143,7 @@ TEST(ImplicitSurface, ManyPatchesMatchTheSingleOctree) {
     ImplicitOptions single;
     single.method = ImplicitMethod::Kb89;
     ImplicitSurface whole(terms, single);
-    EXPECT_EQ(patches.PatchCount(), 150);
+    EXPECT_EQ(PatchesOf(patches).Patches().size(), 150u);
     int hits = 0;
     for (int i = 0; i < 600; ++i) {
         const Ray ray = SpreadRay(i, 9, {3, 3, 3});
@@ -414,7 +420,7 @@ constexpr const char* kContactPair =
 TEST(ImplicitContact, StatementsParseAndFailLocated) {
     auto p = Parse(kContactPair);
     ASSERT_TRUE(p);
-    EXPECT_EQ(static_cast<ImplicitSurface&>(*p).PatchCount(), 2);
+    EXPECT_EQ(PatchesOf(static_cast<ImplicitSurface&>(*p)).Patches().size(), 2u);
     for (const char* bad : {"point a 0 0 0 contact a c end", "point a 0 0 0 contact a a end",
                             "point a 0 0 0 point b 1 0 0 blend a b contact a b end",
                             "point a 0 0 0 point b 1 0 0 contact a b propagation a -1 end",
@@ -512,7 +518,7 @@ TEST(ImplicitContact, Figure7BoxesAreTheDeformationBoxes) {
         }
     }
     int deformed = 0;
-    for (const DeformedPatch& d : surface.Contacts()) {
+    for (const DeformedPatch& d : PatchesOf(surface).Contacts()) {
         if (!d.deformed) continue;
         ++deformed;
         std::string name = surface.Terms()[d.patch].name;  // one patch per term here
