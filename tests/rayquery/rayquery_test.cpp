@@ -581,7 +581,7 @@ TEST(RayQuery, BadInputIsReportedWithLineNumbers) {
 
     RunResult badMethod = RunText(scene, "", "-m nosuch");
     EXPECT_NE(badMethod.status, 0);
-    EXPECT_NE(badMethod.stdErr.find("-m needs a method"), std::string::npos);
+    EXPECT_NE(badMethod.stdErr.find("-m: unknown method 'nosuch'"), std::string::npos);
 
     RunResult badScene = RunText("name ball implicit s\n point c 0 0 0\nend\n", "", "");
     EXPECT_NE(badScene.status, 0);
@@ -794,7 +794,8 @@ TEST(RayQuery, BadOverridesAreRejected) {
         const char *args, *message;
     };
     const Case cases[] = {
-        {"-m bisection", "-m needs a method: patches, kb89, march, sphere, segment"},
+        {"-m bisection",
+         "-m: unknown method 'bisection' (expected patches, kb89, march, sphere, segment"},
         {"-e 0", "-e: the tolerance must be > 0"},
         {"-e x", "-e: 'x' is not a finite number"},
         {"-d 17", "-d: the octree depth"},

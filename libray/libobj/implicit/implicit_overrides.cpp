@@ -1,5 +1,8 @@
 #include "libobj/implicit/implicit_overrides.h"
 
+#include <cmath>
+#include <cstdlib>
+
 #include "libcommon/error.h"
 
 namespace rs {
@@ -63,6 +66,58 @@ bool ParseOctreeSwitch(const std::string& assignment, ImplicitOverrides& overrid
     }
     overrides.switches.emplace_back(name, value == "on");
     return true;
+}
+
+namespace {
+
+// The value as a finite number; false with a message otherwise.
+bool ParseFinite(const std::string& value, double& number, std::string& error) {
+    char* end = nullptr;
+    number = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(number)) {
+        error = "'" + value + "' is not a finite number";
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool ParseImplicitOverride(ImplicitOverrideKind kind, const std::string& value,
+                           ImplicitOverrides& overrides, std::string& error) {
+    if (kind == ImplicitOverrideKind::Switch) return ParseOctreeSwitch(value, overrides, error);
+    if (kind == ImplicitOverrideKind::Method) {
+        ImplicitMethod method;
+        if (!ParseImplicitMethod(value, method)) {
+            error = "unknown method '" + value + "' (expected " + ImplicitMethodNames() + ")";
+            return false;
+        }
+        overrides.method = method;
+        return true;
+    }
+    double number = 0;
+    if (!ParseFinite(value, number, error)) return false;
+    const bool positive = number > 0;
+    switch (kind) {
+        case ImplicitOverrideKind::Tolerance:
+            if (!positive) error = "the tolerance must be > 0";
+            if (positive) overrides.tolerance = number;
+            break;
+        case ImplicitOverrideKind::Depth: {
+            const bool depth = number == std::floor(number) && number >= 0 && number <= 16;
+            if (!depth) error = "the octree depth must be an integer in [0, 16]";
+            if (depth) overrides.maxDepth = static_cast<int>(number);
+            break;
+        }
+        case ImplicitOverrideKind::DRatio:
+            overrides.dRatio = number;
+            break;
+        default:  // Step
+            if (!positive) error = "the march step must be > 0";
+            if (positive) overrides.step = number;
+            break;
+    }
+    return error.empty();
 }
 
 }  // namespace rs

@@ -41,6 +41,17 @@ bool* OctreeSwitch(OctreeSettings& settings, const std::string& name);
 bool ParseOctreeSwitch(const std::string& assignment, ImplicitOverrides& overrides,
                        std::string& error);
 
+// The settings a command-line override may take, one option each in rayshade (-M, -I,
+// -K, -J, -B, -H) and rayquery (-m, -e, -d, -r, -k, -H).
+enum class ImplicitOverrideKind { Method, Tolerance, Depth, DRatio, Step, Switch };
+
+// Parses the value of one override into `overrides`: a method name (Method), a finite
+// number (Tolerance and Step > 0, Depth an integer in [0, 16], any DRatio), or NAME=on|off
+// (Switch). False with a message without the option's name otherwise. Both programs parse
+// their implicit options through this one function.
+bool ParseImplicitOverride(ImplicitOverrideKind kind, const std::string& value,
+                           ImplicitOverrides& overrides, std::string& error);
+
 class Object;
 
 // Applies the overrides to every implicit object below `root` (each shared node once) and
