@@ -1,5 +1,5 @@
 // Layer 6 of the implicit module: the interface of the baseline intersection methods
-// (march, sphere, segment, exact here; polynomial at layer 7), which search the PLAIN SUM
+// (march, sphere, segment, exact here; polynomial at layer 8), which search the PLAIN SUM
 // F = Σ w_i f_i(d_i) of an object's terms for the first root of g = F − T along a ray.
 // Patches are not used by them (they would need a predominance test per root and one search
 // per patch: see README.md, "Methods"), and blend lists are ignored (everything blends).
