@@ -1,5 +1,6 @@
 #include "libobj/implicit/object_stats.h"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,24 +18,24 @@ bool StartsWith(const std::string& s, const char* prefix) {
     return s.compare(0, std::char_traits<char>::length(prefix), prefix) == 0;
 }
 
-// The module's counters a build advances ("Implicit octree ..." and the field, gradient
-// and bound counters, i.e. every "Implicit ..." counter but the per-object ones), with the
-// name of the per-object counter each is attributed to ("octree ..." or "preprocessing
-// ..."). Found by name once, on the first object's construction (parsing, not rendering).
+// The module's counters a build advances, declared by the files that count them (the
+// octree's, OctreeCounterIds, and the field's, FieldCounterIds), in registration order,
+// with the name of the per-object counter each is attributed to: "octree ..." for the
+// octree build counters, "preprocessing ..." for the others (search tests and evaluations
+// made while building).
 const std::vector<std::pair<CounterId, std::string>>& BuildCounterSources() {
     static const std::vector<std::pair<CounterId, std::string>> sources = [] {
-        RiddersIterationCounter();  // registers the octree counters
-        FieldCounterIds();
-        std::vector<std::pair<CounterId, std::string>> out;
+        std::vector<CounterId> ids = OctreeCounterIds();
+        const FieldCounters& field = FieldCounterIds();
+        ids.insert(ids.end(), {field.values, field.gradients, field.bounds});
+        std::sort(ids.begin(), ids.end());
         const std::vector<CounterValue> all = StatsSnapshot();
-        for (size_t i = 0; i < all.size(); ++i) {
-            const std::string& name = all[i].name;
-            if (!StartsWith(name, kCounterPrefix) || StartsWith(name, "Implicit object")) {
-                continue;
-            }
+        std::vector<std::pair<CounterId, std::string>> out;
+        for (CounterId id : ids) {
+            const std::string& name = all[static_cast<size_t>(id)].name;
             std::string what = name.substr(std::char_traits<char>::length(kCounterPrefix));
             if (!StartsWith(name, kOctreeCounterPrefix)) what = "preprocessing " + what;
-            out.emplace_back(static_cast<CounterId>(i), what);
+            out.emplace_back(id, what);
         }
         return out;
     }();
