@@ -257,15 +257,10 @@ BuiltImplicitBlock BuildImplicitBlock(ImplicitDescription description, ArgReader
         return {};
     }
     ImplicitOptions& options = built.options;
-    if (options.method == ImplicitMethod::Auto) {
-        options.method = ResolveAutoMethod(built.terms, !d.blends.empty() || !d.contacts.empty());
-    }
-    if (const MethodEntry& entry = MethodEntryOf(options.method); entry.check) {
-        std::string error = entry.check(built.terms);
-        if (!error.empty()) {
-            const StatementPlace method = d.settings.methodPlace;
-            method.line > 0 ? args.FailAtLocation(d.Where(method), error) : args.Fail(error);
-        }
+    if (std::string error = ChooseMethod(options.method, built.terms, options, options.method);
+        !error.empty()) {
+        const StatementPlace method = d.settings.methodPlace;
+        method.line > 0 ? args.FailAtLocation(d.Where(method), error) : args.Fail(error);
     }
     if (animated) {
         built.termsAt = [description = std::move(description)](double time) {

@@ -39,15 +39,10 @@ std::string ImplicitSurface::SetMethod(ImplicitMethod method) {
 
 std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) {
     if (overrides.method) {
-        const ImplicitMethod method =
-            *overrides.method == ImplicitMethod::Auto
-                ? ResolveAutoMethod(Terms(), options_.blendMode == BlendMode::Explicit ||
-                                                 !options_.contacts.empty())
-                : *overrides.method;
-        const MethodEntry& entry = MethodEntryOf(method);
-        if (entry.check) {
-            std::string error = entry.check(Terms());
-            if (!error.empty()) return stats_.Label() + ": " + error;
+        ImplicitMethod method;
+        if (std::string error = ChooseMethod(*overrides.method, Terms(), options_, method);
+            !error.empty()) {
+            return stats_.Label() + ": " + error;
         }
         options_.method = method;
         options_.octree =

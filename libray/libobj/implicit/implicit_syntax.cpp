@@ -110,8 +110,9 @@ class BlockReader {
     void ReadSkeleton(const SkeletonSyntax& syntax, const SourceLocation& where);
     int ReadNumberCount(const SkeletonSyntax& syntax, const std::string& name,
                         const SourceLocation& where);
-    // A skeleton name: any word but the block's statement words.
-    std::string ReadSkeletonName(const char* role);
+    // A skeleton name: any word but the block's statement words (an error at `where`, the
+    // statement's location).
+    std::string ReadSkeletonName(const char* role, const SourceLocation& where);
     // Why the next token starts no statement (consuming it when it is a word).
     std::string UnknownStatement();
     void WarnUnusedField();
@@ -284,13 +285,12 @@ void BlockReader::WarnUnusedField() {
                  "skeletons declared after it)");
 }
 
-std::string BlockReader::ReadSkeletonName(const char* role) {
-    const SourceLocation where = args_.NextLocation();
+std::string BlockReader::ReadSkeletonName(const char* role, const SourceLocation& where) {
     std::string name = args_.ReadWord();
     if (IsImplicitStatementWord(name)) {
-        args_.FailAtLocation(where, StringPrintf("expected %s, found '%s', a reserved word of the "
-                                         "implicit block",
-                                         role, name.c_str()));
+        args_.FailAtLocation(where, StringPrintf("expected %s, found '%s', a reserved word of "
+                                                "the implicit block",
+                                                role, name.c_str()));
     }
     return name;
 }
@@ -298,7 +298,7 @@ std::string BlockReader::ReadSkeletonName(const char* role) {
 void BlockReader::ReadBlend(const SourceLocation& where) {
     BlendSpec blend;
     blend.place = Place(where);
-    std::string first = ReadSkeletonName("a skeleton name");
+    std::string first = ReadSkeletonName("a skeleton name", where);
     if (args_.Accept(kHubSeparator)) {
         blend.hub = std::move(first);
     } else {
@@ -306,7 +306,7 @@ void BlockReader::ReadBlend(const SourceLocation& where) {
     }
     // An open-ended list: it stops at the next statement word (or a number, an error then).
     do {
-        blend.names.push_back(ReadSkeletonName("a skeleton name"));
+        blend.names.push_back(ReadSkeletonName("a skeleton name", where));
     } while (args_.PeekWord() && !args_.Peek(kHubSeparator) &&
              std::none_of(std::begin(kStatements), std::end(kStatements),
                           [&](const StatementSyntax& s) { return args_.Peek(s.word); }) &&
@@ -318,15 +318,15 @@ void BlockReader::ReadBlend(const SourceLocation& where) {
 void BlockReader::ReadContact(const SourceLocation& where) {
     ContactSpec contact;
     contact.place = Place(where);
-    contact.a = ReadSkeletonName("a skeleton name");
-    contact.b = ReadSkeletonName("a second skeleton name");
+    contact.a = ReadSkeletonName("a skeleton name", where);
+    contact.b = ReadSkeletonName("a second skeleton name", where);
     d_.contacts.push_back(std::move(contact));
 }
 
 void BlockReader::ReadPropagation(const SourceLocation& where) {
     PropagationSpec p;
     p.place = Place(where);
-    p.name = ReadSkeletonName("a skeleton name");
+    p.name = ReadSkeletonName("a skeleton name", where);
     p.width = args_.ReadNumber();
     if (!(p.width >= 0)) args_.FailAtLocation(where, "propagation width must be >= 0");
     if (args_.PeekNumber()) {
@@ -358,7 +358,7 @@ void BlockReader::ReadSkeleton(const SkeletonSyntax& syntax, const SourceLocatio
     SkeletonSpec e;
     e.kind = syntax.kind;
     e.place = Place(where);
-    if (const std::string name = ReadSkeletonName("a skeleton name");
+    if (const std::string name = ReadSkeletonName("a skeleton name", where);
         !d_.names.Insert(name)) {
         args_.FailAtLocation(where, "skeleton name '" + name + "' used twice");
     }
@@ -371,10 +371,11 @@ void BlockReader::ReadSkeleton(const SkeletonSyntax& syntax, const SourceLocatio
     e.kernel = defaultKernel_;
     defaultKernelUsed_ = true;
     for (;;) {
-        const SourceLocation modifier = args_.NextLocation();
         if (args_.Accept(kWeight)) {
             e.weight = d_.numbers.Add(args_.ReadAnimatedNumber());
-        } else if (args_.Accept("field")) {
+        } else if (args_.Peek("field")) {
+            const SourceLocation modifier = args_.NextLocation();  // only when there is one
+            args_.Accept("field");
             d_.kernels.push_back(ReadKernel(modifier));
             e.kernel = d_.kernels.size() - 1;
         } else {

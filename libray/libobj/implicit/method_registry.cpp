@@ -97,4 +97,20 @@ ImplicitMethod ResolveAutoMethod(const std::vector<FieldTerm>& terms, bool blend
                                                                      : ImplicitMethod::Patches;
 }
 
+std::string ChooseMethod(ImplicitMethod requested, const std::vector<FieldTerm>& terms,
+                         const ImplicitOptions& options, ImplicitMethod& chosen) {
+    const bool blendsOrContacts =
+        options.blendMode == BlendMode::Explicit || !options.contacts.empty();
+    const ImplicitMethod method = requested == ImplicitMethod::Auto
+                                      ? ResolveAutoMethod(terms, blendsOrContacts)
+                                      : requested;
+    const MethodEntry& entry = MethodEntryOf(method);
+    if (entry.check) {
+        std::string error = entry.check(terms);
+        if (!error.empty()) return error;
+    }
+    chosen = method;
+    return {};
+}
+
 }  // namespace rs

@@ -55,4 +55,11 @@ std::string ImplicitMethodNames();
 // solver's accuracy with no octree to build, and cost O(log N) per ray for N skeletons.
 ImplicitMethod ResolveAutoMethod(const std::vector<FieldTerm>& terms, bool blendsOrContacts);
 
+// The one place a requested method becomes the method run: `auto` resolved by
+// ResolveAutoMethod from the terms and the blend graph and contacts of `options`, then the
+// method's check of the terms. Returns the method in `chosen`, or an error message naming a
+// skeleton when the method cannot serve the terms.
+std::string ChooseMethod(ImplicitMethod requested, const std::vector<FieldTerm>& terms,
+                         const ImplicitOptions& options, ImplicitMethod& chosen);
+
 }  // namespace rs
