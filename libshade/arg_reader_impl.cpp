@@ -8,10 +8,11 @@
 namespace rs {
 
 namespace {
-// Matches a keyword by canonical spelling (so Accept("polygon") matches `poly`) or a name.
+// Matches a keyword by canonical spelling (so Accept("polygon") matches `poly`), a name, or
+// a punctuation character (Accept(":")).
 bool Matches(const Token& t, const char* word) {
     if (t.kind == TokenKind::Keyword) return SpellsKeyword(word, t.keyword);
-    return t.kind == TokenKind::Name && t.text == word;
+    return (t.kind == TokenKind::Name || t.kind == TokenKind::Char) && t.text == word;
 }
 }  // namespace
 
@@ -68,6 +69,16 @@ std::string TokenArgReader::ReadName() {
     return parser_.Tokens().Next().text;
 }
 
+std::string TokenArgReader::ReadWord() {
+    if (!PeekWord()) FailExpected("a name");
+    return parser_.Tokens().Next().text;
+}
+
+bool TokenArgReader::PeekWord() {
+    TokenKind k = parser_.Tokens().Peek().kind;
+    return k == TokenKind::Name || k == TokenKind::Keyword;
+}
+
 std::string TokenArgReader::ReadFilename() {
     if (!PeekFilename()) FailExpected("a file name");
     return parser_.Tokens().Next().text;
@@ -89,6 +100,14 @@ void TokenArgReader::Advise(const std::string& message) {
 }
 
 void TokenArgReader::Fail(const std::string& message) { FailAt(keyword_, usage_, message); }
+
+void TokenArgReader::WarnAtLocation(const SourceLocation& where, const std::string& message) {
+    Report(Severity::Warn, where, "%s", message.c_str());
+}
+
+void TokenArgReader::FailAtLocation(const SourceLocation& where, const std::string& message) {
+    rs::FailAt(where, usage_, message);
+}
 
 void TokenArgReader::FailExpected(const std::string& what) {
     const Token& t = parser_.Tokens().Peek();

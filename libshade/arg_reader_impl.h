@@ -37,6 +37,8 @@ class TokenArgReader final : public ArgReader {
     bool Accept(const char* word) override;
     bool Peek(const char* word) override;
     std::string ReadName() override;
+    std::string ReadWord() override;
+    bool PeekWord() override;
     std::string ReadFilename() override;
     bool PeekFilename() override;
     Surface ReadSurface() override;
@@ -45,6 +47,10 @@ class TokenArgReader final : public ArgReader {
     void Warn(const std::string& message) override;
     void Advise(const std::string& message) override;
     [[noreturn]] void Fail(const std::string& message) override;
+    SourceLocation NextLocation() override { return parser_.Tokens().Peek().Location(); }
+    void WarnAtLocation(const SourceLocation& where, const std::string& message) override;
+    [[noreturn]] void FailAtLocation(const SourceLocation& where,
+                                     const std::string& message) override;
 
     // The expression of an animatable argument (spec `aexpr`), static or time-varying.
     ExprPtr ReadExpression();

@@ -7,6 +7,7 @@
 #include "libobj/disc.h"
 #include "libobj/heightfield.h"
 #include "libobj/implicit/implicit_surface.h"
+#include "libobj/implicit/implicit_syntax.h"
 #include "libobj/plane.h"
 #include "libobj/polygon.h"
 #include "libobj/sphere.h"
@@ -31,10 +32,7 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry() {
         {"poly", Polygon::Create, "poly [surface] x1 y1 z1 x2 y2 z2 x3 y3 z3 ..."},
         {"blob", Blob::Create, "blob [surface] threshold strength radius cx cy cz [strength radius cx cy cz ...]"},
         {"heightfield", HeightField::Create, "heightfield [surface] file"},
-        {"implicit", ImplicitSurface::Create,
-         "implicit [surface] [threshold T] [tolerance Eps] [octree depth [dratio]] "
-         "[method auto|patches|kb89|march [step]|sphere|segment|polynomial|exact] [field ...] "
-         "{point|segment|polyline|circle|triangle|box|cylinder Name ...} {blend Name Name...} end",
+        {"implicit", ImplicitSurface::Create, kImplicitUsage,
          ImplicitSurface::IsBlockWord},
     };
     return rows;

@@ -37,73 +37,30 @@ constexpr const char* kUsage =
     "             then picks the root accuracy from it, as for rendered rays\n"
     "  -v         print the statistics counters to standard error at the end\n";
 
-// The value of option argv[i] as a finite number; false with a message otherwise.
-bool ReadNumber(int argc, char** argv, int i, double& value, std::string& error) {
-    if (i + 1 >= argc) {
-        error = std::string(argv[i]) + " needs a value";
-        return false;
-    }
-    char* end = nullptr;
-    value = std::strtod(argv[i + 1], &end);
-    if (end == argv[i + 1] || *end != '\0' || !std::isfinite(value)) {
-        error = std::string(argv[i]) + ": '" + argv[i + 1] + "' is not a finite number";
-        return false;
-    }
-    return true;
-}
-
-// ReadNumber for a value that must be > 0; `what` names it in the error.
-bool ReadPositive(int argc, char** argv, int i, double& value, const char* what,
-                  std::string& error) {
-    if (!ReadNumber(argc, argv, i, value, error)) return false;
-    if (!(value > 0)) {
-        error = std::string(argv[i]) + ": " + what + " must be > 0";
-        return false;
-    }
-    return true;
-}
-
 // Reads the option at argv[i] (and its value) into `overrides`; `i` moves past the value.
 // Returns false with a message on a malformed value; `known` tells whether it was ours.
 bool ReadOverride(int argc, char** argv, int& i, rs::ImplicitOverrides& overrides, bool& known,
                   std::string& error) {
+    static const std::pair<const char*, rs::ImplicitOverrideKind> kOptions[] = {
+        {"-m", rs::ImplicitOverrideKind::Method}, {"-e", rs::ImplicitOverrideKind::Tolerance},
+        {"-d", rs::ImplicitOverrideKind::Depth},  {"-r", rs::ImplicitOverrideKind::DRatio},
+        {"-k", rs::ImplicitOverrideKind::Step},   {"-H", rs::ImplicitOverrideKind::Switch}};
     const std::string arg = argv[i];
-    known = true;
-    double v = 0;
-    if (arg == "-m") {
-        rs::ImplicitMethod method;
-        if (i + 1 >= argc || !rs::ParseImplicitMethod(argv[i + 1], method)) {
-            error = "-m needs a method: " + rs::ImplicitMethodNames();
-            return false;
-        }
-        overrides.method = method;
-    } else if (arg == "-e") {
-        if (!ReadPositive(argc, argv, i, v, "the tolerance", error)) return false;
-        overrides.tolerance = v;
-    } else if (arg == "-d") {
-        if (!ReadNumber(argc, argv, i, v, error)) return false;
-        if (v != std::floor(v) || v < 0 || v > 16) {
-            error = "-d: the octree depth must be an integer in [0, 16]";
-            return false;
-        }
-        overrides.maxDepth = static_cast<int>(v);
-    } else if (arg == "-r") {
-        if (!ReadNumber(argc, argv, i, v, error)) return false;
-        overrides.dRatio = v;
-    } else if (arg == "-k") {
-        if (!ReadPositive(argc, argv, i, v, "the march step", error)) return false;
-        overrides.step = v;
-    } else if (arg == "-H") {
+    known = false;
+    for (const auto& [option, kind] : kOptions) {
+        if (arg != option) continue;
+        known = true;
         if (i + 1 >= argc) {
-            error = "-H needs NAME=on|off";
+            error = arg + " needs a value";
             return false;
         }
-        if (!rs::ParseOctreeSwitch(argv[i + 1], overrides, error)) return false;
-    } else {
-        known = false;
+        if (!rs::ParseImplicitOverride(kind, argv[i + 1], overrides, error)) {
+            error = arg + ": " + error;
+            return false;
+        }
+        ++i;
         return true;
     }
-    ++i;
     return true;
 }
 

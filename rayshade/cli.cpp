@@ -53,6 +53,16 @@ class ArgCursor {
     size_t next_ = 0;
 };
 
+// Reads the value of an implicit override option (-M, -I, -K, -J, -B, -H) into cl.implicit.
+bool Implicit(ArgCursor& in, const char* flag, ImplicitOverrideKind kind, CommandLine& cl) {
+    std::string value, error;
+    if (!in.Word(flag, value)) return false;
+    if (!ParseImplicitOverride(kind, value, cl.implicit, error)) {
+        return in.Fail(std::string(flag) + ": " + error);
+    }
+    return true;
+}
+
 }  // namespace
 
 namespace {
@@ -177,13 +187,7 @@ bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std
         const char* flag = arg.c_str();
         switch (arg[1]) {
             case 'A': if (!in.Int(flag, o.startFrame)) return false; break;
-            case 'B': {
-                double step = 0;
-                if (!in.Real(flag, step)) return false;
-                if (!(step > 0)) return in.Fail("-B: the march step must be > 0");
-                cl.implicit.step = step;
-                break;
-            }
+            case 'B': if (!Implicit(in, flag, ImplicitOverrideKind::Step, cl)) return false; break;
             case 'a': cl.alpha = !cl.alpha; break;
             case 'C':
                 if (!in.Real(flag, o.cutoff.r) || !in.Real(flag, o.cutoff.g) || !in.Real(flag, o.cutoff.b))
@@ -208,34 +212,11 @@ bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std
             case 'f': o.flipNormals = !o.flipNormals; break;
             case 'G': if (!in.Real(flag, o.gamma)) return false; break;
             case 'g': o.filter = o.filter == FilterKind::Box ? FilterKind::Gauss : FilterKind::Box; break;
-            case 'H': {
-                std::string assignment, switchError;
-                if (!in.Word(flag, assignment)) return false;
-                if (!ParseOctreeSwitch(assignment, cl.implicit, switchError))
-                    return in.Fail("-H: " + switchError);
-                break;
-            }
+            case 'H': if (!Implicit(in, flag, ImplicitOverrideKind::Switch, cl)) return false; break;
             case 'h': cl.help = true; break;
-            case 'I': {
-                double tolerance = 0;
-                if (!in.Real(flag, tolerance)) return false;
-                if (!(tolerance > 0)) return in.Fail("-I: the implicit tolerance must be > 0");
-                cl.implicit.tolerance = tolerance;
-                break;
-            }
-            case 'J': {
-                double dRatio = 0;
-                if (!in.Real(flag, dRatio)) return false;
-                cl.implicit.dRatio = dRatio;
-                break;
-            }
-            case 'K': {
-                int depth = 0;
-                if (!in.Int(flag, depth)) return false;
-                if (depth < 0 || depth > 16) return in.Fail("-K: the octree depth must be in [0, 16]");
-                cl.implicit.maxDepth = depth;
-                break;
-            }
+            case 'I': if (!Implicit(in, flag, ImplicitOverrideKind::Tolerance, cl)) return false; break;
+            case 'J': if (!Implicit(in, flag, ImplicitOverrideKind::DRatio, cl)) return false; break;
+            case 'K': if (!Implicit(in, flag, ImplicitOverrideKind::Depth, cl)) return false; break;
             case 'j':
                 o.jitter = !o.jitter;
                 o.jitterSet = true;
@@ -249,16 +230,7 @@ bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std
                 break;
             }
             case 'r': o.eyeSepSide = 1; break;
-            case 'M': {
-                std::string name;
-                ImplicitMethod method;
-                if (!in.Word(flag, name)) return false;
-                if (!ParseImplicitMethod(name, method))
-                    return in.Fail("-M: unknown method '" + name + "' (expected " +
-                                   ImplicitMethodNames() + ")");
-                cl.implicit.method = method;
-                break;
-            }
+            case 'M': if (!Implicit(in, flag, ImplicitOverrideKind::Method, cl)) return false; break;
             case 'm': break;  // sample map in the RLE alpha channel: no RLE writer
             case 'N':
                 if (!in.Int(flag, o.frames)) return false;

@@ -6,6 +6,7 @@
 // so factories need no error handling of their own for malformed input.
 #pragma once
 
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <string>
@@ -48,12 +49,18 @@ class ArgReader {
 
     // True when the next token can start a number (so open-ended lists can loop).
     virtual bool PeekNumber() = 0;
-    // Consumes the next token if it is the keyword or name `word`; returns whether it did.
+    // Consumes the next token if it is the keyword, name or punctuation character `word`;
+    // returns whether it did.
     virtual bool Accept(const char* word) = 0;
     // True when the next token is the keyword or name `word` (nothing consumed).
     virtual bool Peek(const char* word) = 0;
     // A NAME token.
     virtual std::string ReadName() = 0;
+    // A NAME token or a keyword of the scene language, as written (for sub-languages whose
+    // names are their own, such as an implicit block's skeleton names). By default ReadName.
+    virtual std::string ReadWord() { return ReadName(); }
+    // True when the next token is a name or a keyword (nothing consumed).
+    virtual bool PeekWord() { return !PeekNumber(); }
     // A file name as written (relative names are relative to the working directory).
     virtual std::string ReadFilename() = 0;
     // The name of a file the scene reads (height field, image, colormap): as ReadFilename,
@@ -78,6 +85,21 @@ class ArgReader {
     virtual void Advise(const std::string& message) = 0;
     // A fatal error at the current location, with the keyword's usage line appended.
     [[noreturn]] virtual void Fail(const std::string& message) = 0;
+
+    // Where the next token starts, so a block spanning lines can place each statement; the
+    // keyword's location by default.
+    virtual SourceLocation NextLocation() { return Location(); }
+    // Warn and Fail at a location of this argument list (from NextLocation).
+    virtual void WarnAtLocation(const SourceLocation& where, const std::string& message) {
+        static_cast<void>(where);
+        Warn(message);
+    }
+    [[noreturn]] virtual void FailAtLocation(const SourceLocation& where,
+                                             const std::string& message) {
+        static_cast<void>(where);
+        Fail(message);
+        std::abort();  // not reached (Fail throws); gcc does not see through the virtual call
+    }
 };
 
 }  // namespace rs

@@ -581,7 +581,7 @@ TEST(RayQuery, BadInputIsReportedWithLineNumbers) {
 
     RunResult badMethod = RunText(scene, "", "-m nosuch");
     EXPECT_NE(badMethod.status, 0);
-    EXPECT_NE(badMethod.stdErr.find("-m needs a method"), std::string::npos);
+    EXPECT_NE(badMethod.stdErr.find("-m: unknown method 'nosuch'"), std::string::npos);
 
     RunResult badScene = RunText("name ball implicit s\n point c 0 0 0\nend\n", "", "");
     EXPECT_NE(badScene.status, 0);
@@ -794,7 +794,8 @@ TEST(RayQuery, BadOverridesAreRejected) {
         const char *args, *message;
     };
     const Case cases[] = {
-        {"-m bisection", "-m needs a method: patches, kb89, march, sphere, segment"},
+        {"-m bisection",
+         "-m: unknown method 'bisection' (expected patches, kb89, march, sphere, segment"},
         {"-e 0", "-e: the tolerance must be > 0"},
         {"-e x", "-e: 'x' is not a finite number"},
         {"-d 17", "-d: the octree depth"},
@@ -810,6 +811,51 @@ TEST(RayQuery, BadOverridesAreRejected) {
         EXPECT_NE(r.stdErr.find(c.message), std::string::npos) << c.args << " -> " << r.stdErr;
         EXPECT_NE(r.stdErr.find("usage: rayquery"), std::string::npos) << c.args;
     }
+}
+
+// The character of the block reference (docs/implicit-reference.md, its last example),
+// written from the page alone: limbs blend with the torso only, so the two forearms, whose
+// hands end 0.24 apart (thickness e = 0.1) at y = −0.6, z = 1.5, form a union there. A ray
+// from the middle of the gap along +x meets the right hand's lone capsule, the surface at
+// distance e from the forearm's end (0.12, −0.6, 1.5): t = 0.02; a vertical ray through the
+// gap meets nothing. With every pair blending (the same skeletons without blend and contact
+// lines) the two hands' fields add up to about 1.8 > T in the gap: a bridge, which both rays
+// meet elsewhere, so the test can tell a union from a blend.
+std::string CharacterBlock() {
+    const std::string page = ReadAll(RAYSHADE_REFERENCE_PAGE);
+    const size_t section = page.find("## A character");
+    EXPECT_NE(section, std::string::npos);
+    const size_t begin = page.find("```ray\n", section) + 7;
+    return page.substr(begin, page.find("```", begin) - begin);
+}
+
+TEST(RayQuery, ReferenceCharacterLimbsDoNotBlendWithEachOther) {
+    const std::string block = CharacterBlock();
+    // The rendered example (examples/implicit/character.ray) is this block.
+    std::string named = block;
+    named.replace(0, std::string("implicit").size(), "implicit skin");
+    EXPECT_NE(ReadAll(RAYSHADE_CHARACTER_SCENE).find(named), std::string::npos);
+
+    const std::vector<QueryRay> rays = {{{0, -0.6, 1.5}, {1, 0, 0}},
+                                        {{0, -0.6, 5}, {0, 0, -1}}};
+    const std::string scene = "surface skin diffuse 1 1 1\n" + block;
+    std::vector<QueryLine> out = RunQueries(scene, rays);
+    ASSERT_TRUE(out[0].hit);
+    EXPECT_NEAR(out[0].t, 0.02, 1e-6);
+    EXPECT_EQ(out[0].patch, "farmR");
+    EXPECT_NEAR(out[0].n.x, -1, 1e-6);  // the capsule's end cap, facing the gap
+    EXPECT_FALSE(out[1].hit) << "t " << out[1].t << " patch " << out[1].patch;
+
+    std::string blended;
+    std::istringstream lines(block);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.find("blend") == std::string::npos && line.find("contact") == std::string::npos)
+            blended += line + "\n";
+    }
+    std::vector<QueryLine> bridge = RunQueries(scene.substr(0, scene.find("implicit")) + blended,
+                                               rays);
+    EXPECT_TRUE(!bridge[0].hit || std::abs(bridge[0].t - 0.02) > 0.1);
+    EXPECT_TRUE(bridge[1].hit);
 }
 
 }  // namespace

@@ -1,10 +1,9 @@
 #include "libobj/implicit/implicit_overrides.h"
 
-#include <set>
+#include <cmath>
+#include <cstdlib>
 
 #include "libcommon/error.h"
-#include "libobj/implicit/implicit_surface.h"
-#include "libobj/object.h"
 
 namespace rs {
 
@@ -29,28 +28,6 @@ constexpr SwitchEntry kSwitches[] = {
     {"2bis", &OctreeSettings::useTest2bis},
     {"t3", &OctreeSettings::useTest3},
 };
-
-bool Apply(Object& node, const ImplicitOverrides& overrides, std::set<const Object*>& seen,
-           int& count, std::string& error) {
-    if (!seen.insert(&node).second) return true;
-    switch (node.kind()) {
-        case Object::Kind::Primitive:
-            if (auto* implicit = dynamic_cast<ImplicitSurface*>(node.primitive())) {
-                error = implicit->ApplyOverrides(overrides);
-                if (!error.empty()) return false;
-                ++count;
-            }
-            return true;
-        case Object::Kind::Aggregate:
-            for (const std::shared_ptr<Object>& child : node.aggregate()->Children()) {
-                if (!Apply(*child, overrides, seen, count, error)) return false;
-            }
-            return true;
-        case Object::Kind::Instance:
-            return Apply(*node.instanceOf(), overrides, seen, count, error);
-    }
-    return true;
-}
 
 }  // namespace
 
@@ -91,12 +68,56 @@ bool ParseOctreeSwitch(const std::string& assignment, ImplicitOverrides& overrid
     return true;
 }
 
-int ApplyImplicitOverrides(Object& root, const ImplicitOverrides& overrides, std::string& error) {
-    std::set<const Object*> seen;
-    int count = 0;
-    error.clear();
-    if (!Apply(root, overrides, seen, count, error)) return -1;
-    return count;
+namespace {
+
+// The value as a finite number; false with a message otherwise.
+bool ParseFinite(const std::string& value, double& number, std::string& error) {
+    char* end = nullptr;
+    number = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(number)) {
+        error = "'" + value + "' is not a finite number";
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool ParseImplicitOverride(ImplicitOverrideKind kind, const std::string& value,
+                           ImplicitOverrides& overrides, std::string& error) {
+    if (kind == ImplicitOverrideKind::Switch) return ParseOctreeSwitch(value, overrides, error);
+    if (kind == ImplicitOverrideKind::Method) {
+        ImplicitMethod method;
+        if (!ParseImplicitMethod(value, method)) {
+            error = "unknown method '" + value + "' (expected " + ImplicitMethodNames() + ")";
+            return false;
+        }
+        overrides.method = method;
+        return true;
+    }
+    double number = 0;
+    if (!ParseFinite(value, number, error)) return false;
+    const bool positive = number > 0;
+    switch (kind) {
+        case ImplicitOverrideKind::Tolerance:
+            if (!positive) error = "the tolerance must be > 0";
+            if (positive) overrides.tolerance = number;
+            break;
+        case ImplicitOverrideKind::Depth: {
+            const bool depth = number == std::floor(number) && number >= 0 && number <= 16;
+            if (!depth) error = "the octree depth must be an integer in [0, 16]";
+            if (depth) overrides.maxDepth = static_cast<int>(number);
+            break;
+        }
+        case ImplicitOverrideKind::DRatio:
+            overrides.dRatio = number;
+            break;
+        default:  // Step
+            if (!positive) error = "the march step must be > 0";
+            if (positive) overrides.step = number;
+            break;
+    }
+    return error.empty();
 }
 
 }  // namespace rs

@@ -1,5 +1,6 @@
 // Layer 8 of the implicit module: command-line overrides of every implicit object's
-// intersection settings (rayquery -m/-e/-d/-r/-k/-H, rayshade -M/-I/-K/-J/-B/-H).
+// intersection settings (rayquery -m/-e/-d/-r/-k/-H, rayshade -M/-I/-K/-J/-B/-H), applied
+// through ImplicitSurface::ApplyOverrides (ApplyImplicitOverrides walks a scene).
 #pragma once
 
 #include <optional>
@@ -11,8 +12,6 @@
 #include "libobj/implicit/method_registry.h"
 
 namespace rs {
-
-class Object;
 
 struct ImplicitOverrides {
     std::optional<ImplicitMethod> method;
@@ -42,10 +41,24 @@ bool* OctreeSwitch(OctreeSettings& settings, const std::string& name);
 bool ParseOctreeSwitch(const std::string& assignment, ImplicitOverrides& overrides,
                        std::string& error);
 
+// The settings a command-line override may take, one option each in rayshade (-M, -I,
+// -K, -J, -B, -H) and rayquery (-m, -e, -d, -r, -k, -H).
+enum class ImplicitOverrideKind { Method, Tolerance, Depth, DRatio, Step, Switch };
+
+// Parses the value of one override into `overrides`: a method name (Method), a finite
+// number (Tolerance and Step > 0, Depth an integer in [0, 16], any DRatio), or NAME=on|off
+// (Switch). False with a message without the option's name otherwise. Both programs parse
+// their implicit options through this one function.
+bool ParseImplicitOverride(ImplicitOverrideKind kind, const std::string& value,
+                           ImplicitOverrides& overrides, std::string& error);
+
+class Object;
+
 // Applies the overrides to every implicit object below `root` (each shared node once) and
 // rebuilds them. Returns the number of objects changed, or −1 with `error` set when one
 // cannot take the method (e.g. polynomial on a non-blob object); objects met before it keep
-// their new settings.
+// their new settings. Defined with the primitive (implicit_surface.cpp), which this header
+// does not include.
 int ApplyImplicitOverrides(Object& root, const ImplicitOverrides& overrides, std::string& error);
 
 }  // namespace rs

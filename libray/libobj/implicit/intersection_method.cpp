@@ -35,4 +35,30 @@ std::optional<double> RootOfStep(const RayField& g, double ta, double ga, double
     return std::nullopt;
 }
 
+std::optional<MethodHit> IntersectionMethod::Intersect(const Ray& ray, double tMin,
+                                                       double tMax) const {
+    std::optional<double> t = FirstRoot(ray, tMin, tMax);
+    if (!t) return std::nullopt;
+    return MethodHit{*t, PredominantTerm(ray.At(*t))};
+}
+
+Vec3 IntersectionMethod::Normal(const Field& whole, const Vec3& p, int) const {
+    const Vec3 n = Normalize(-Gradient(whole, p));
+    if (LengthSquared(n) != 0) return n;
+    int own = 0;
+    for (int i = 1; i < whole.Size(); ++i) {
+        if (whole.TermValue(i, p) > whole.TermValue(own, p)) own = i;
+    }
+    return AwayFromSkeleton(whole, own, p);
+}
+
+Bounds3 IntersectionMethod::Bounds(const Field& whole) const { return PositiveSupportBounds(whole); }
+
+Vec3 AwayFromSkeleton(const Field& field, int own, const Vec3& p) {
+    Vec3 closest;
+    SkeletonDistance(field.Terms()[own].skeleton, p, closest);
+    const Vec3 n = Normalize(p - closest);
+    return LengthSquared(n) == 0 ? Vec3{0, 0, 1} : n;
+}
+
 }  // namespace rs

@@ -1,9 +1,9 @@
 // Layer 6 of the implicit module: the interface of the baseline intersection methods
-// (march, sphere, segment, exact here; polynomial at layer 7), which search the PLAIN SUM
+// (march, sphere, segment, exact here; polynomial at layer 8), which search the PLAIN SUM
 // F = Σ w_i f_i(d_i) of an object's terms for the first root of g = F − T along a ray.
 // Patches are not used by them (they would need a predominance test per root and one search
 // per patch: see README.md, "Methods"), and blend lists are ignored (everything blends).
-// The octree methods (patches, kb89) are built by the primitive itself (lg_octree.h).
+// The octree methods (kb89_method.h, patches_method.h) implement the same interface.
 //
 // Contract of FirstRoot(ray, tMin, tMax), ray in object space (direction of any non-zero
 // length, t in units of it): a t in the OPEN interval (tMin, tMax) near the first place where
@@ -27,6 +27,17 @@ struct MethodParams {
     double step = 0;          // march step (distance); <= 0: DefaultMarchStep
 };
 
+// A hit of a method: the ray parameter and the term owning the hit's patch (the skeleton
+// whose patch it lies on, or the predominant one where the method reports it), or −1.
+struct MethodHit {
+    double t = 0;
+    int term = -1;
+};
+
+// How an implicit object's rays are intersected: the baselines below the primitive
+// (FirstRoot on the plain sum) and the octree methods (Kb89Method, PatchesMethod), which
+// override Intersect, Normal and Bounds. Every method is made by its row of the registry
+// (method_registry.h) and is immutable once made (thread-safe, lazy trees included).
 class IntersectionMethod {
   public:
     virtual ~IntersectionMethod() = default;
@@ -37,7 +48,20 @@ class IntersectionMethod {
     // The term whose contribution w·f(d) is largest at p (ties to the lowest index, as
     // Patch::Predominates), or −1 when the method does not evaluate it.
     virtual int PredominantTerm(const Vec3&) const { return -1; }
+
+    // The first hit in (tMin, tMax): FirstRoot, with PredominantTerm at the root.
+    virtual std::optional<MethodHit> Intersect(const Ray& ray, double tMin, double tMax) const;
+    // The unit outward normal at a hit p owned by `term` (−1: none), `whole` being the
+    // object's plain sum: normalised −∇F (Gradient), and where ∇F = 0 the direction away
+    // from the skeleton predominating at p (+z on the skeleton).
+    virtual Vec3 Normal(const Field& whole, const Vec3& p, int term) const;
+    // A box containing every hit (default: PositiveSupportBounds of `whole`).
+    virtual Bounds3 Bounds(const Field& whole) const;
 };
+
+// The unit vector from the closest point of skeleton `own` of `field` to p, +z when p lies
+// on it: the normal where ∇F vanishes (pinch points).
+Vec3 AwayFromSkeleton(const Field& field, int own, const Vec3& p);
 
 // The box of the supports of the positive-weight terms: F <= 0 < T outside it, so every
 // root lies inside (empty box when no term is positive).

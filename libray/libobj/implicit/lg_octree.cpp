@@ -52,6 +52,35 @@ const OctreeCounters& Counters() {
 
 CounterId RiddersIterationCounter() { return Counters().riddersIterations; }
 
+std::vector<CounterId> OctreeCounterIds() {
+    const OctreeCounters& c = Counters();
+    return {c.cellsBuilt,
+                               c.rangeFired,
+                               c.patchFired,
+                               c.h1Fired,
+                               c.h1bisFired,
+                               c.h2Fired,
+                               c.h3Fired,
+                               c.h3bisFired,
+                               c.budgetFired,
+                               c.h4Fired,
+                               c.h5Fired,
+                               c.cellsVisited,
+                               c.test0bis,
+                               c.test1,
+                               c.test2bisChord,
+                               c.monotoneNoRoot,
+                               c.test3,
+                               c.splits,
+                               c.segmentBounds,
+                               c.ridders,
+                               c.riddersIterations,
+                               c.floorRoots,
+                               c.unresolved,
+                               c.rejectedRoots,
+                               c.excludedSegments};
+}
+
 namespace {
 
 bool Inside(double g) { return g > 0; }

@@ -316,6 +316,9 @@ float UpperFloat(double x);
 // callers can attribute iterations to an object by differences of ThreadCount. The build
 // counters are all named "Implicit octree ...".
 CounterId RiddersIterationCounter();
+// Every counter of this file (the build heuristics' firings and the search tests), in
+// registration order, so callers can attribute them (object_stats.h).
+std::vector<CounterId> OctreeCounterIds();
 
 // The octree of a patch: its field over its box, with the patch rule for its own term.
 LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings);

@@ -1,7 +1,9 @@
 #include "libobj/implicit/method_registry.h"
 
 #include "libobj/implicit/exact_method.h"
+#include "libobj/implicit/kb89_method.h"
 #include "libobj/implicit/march_method.h"
+#include "libobj/implicit/patches_method.h"
 #include "libobj/implicit/polynomial_method.h"
 #include "libobj/implicit/segment_method.h"
 #include "libobj/implicit/sphere_method.h"
@@ -11,16 +13,28 @@ namespace rs {
 namespace {
 
 template <class M>
-std::unique_ptr<IntersectionMethod> Make(const Field& field, const MethodParams& params) {
-    return std::make_unique<M>(field, params);
+std::unique_ptr<IntersectionMethod> Make(const Field& whole, const ImplicitOptions& options,
+                                         const ImplicitObjectStats&) {
+    return std::make_unique<M>(whole, BaselineParams(options));
+}
+
+std::unique_ptr<IntersectionMethod> MakePatches(const Field& whole,
+                                                const ImplicitOptions& options,
+                                                const ImplicitObjectStats& stats) {
+    return std::make_unique<PatchesMethod>(whole, options, stats);
+}
+
+std::unique_ptr<IntersectionMethod> MakeKb89(const Field& whole, const ImplicitOptions& options,
+                                             const ImplicitObjectStats& stats) {
+    return std::make_unique<Kb89Method>(whole, options.threshold, options.octree, stats);
 }
 
 }  // namespace
 
 const std::vector<MethodEntry>& MethodRegistry() {
     static const std::vector<MethodEntry> registry = {
-        {ImplicitMethod::Patches, "patches", nullptr, nullptr},
-        {ImplicitMethod::Kb89, "kb89", nullptr, nullptr},
+        {ImplicitMethod::Patches, "patches", MakePatches, nullptr},
+        {ImplicitMethod::Kb89, "kb89", MakeKb89, nullptr},
         {ImplicitMethod::March, "march", Make<MarchMethod>, nullptr},
         {ImplicitMethod::Sphere, "sphere", Make<SphereMethod>, nullptr},
         {ImplicitMethod::Segment, "segment", Make<SegmentMethod>, nullptr},
@@ -29,6 +43,28 @@ const std::vector<MethodEntry>& MethodRegistry() {
         {ImplicitMethod::Auto, "auto", nullptr, nullptr},
     };
     return registry;
+}
+
+MethodParams BaselineParams(const ImplicitOptions& options) {
+    MethodParams params;
+    params.threshold = options.threshold;
+    params.tolerance = options.octree.tolerance;
+    params.step = options.marchStep;
+    return params;
+}
+
+OctreeSettings MethodOctreeSettings(ImplicitMethod method, const OctreeSettings& declared,
+                                    double patchesDRatio) {
+    const bool kb89 = method == ImplicitMethod::Kb89;
+    OctreeSettings s = kb89 ? OctreeSettings::Kb89() : OctreeSettings{};
+    s.maxDepth = declared.maxDepth;
+    if (!kb89) s.dRatio = patchesDRatio;
+    s.tolerance = declared.tolerance;
+    s.minWidth = declared.minWidth;
+    s.autoTolerance = declared.autoTolerance;
+    s.footprintFraction = declared.footprintFraction;
+    s.autoToleranceCap = declared.autoToleranceCap;
+    return s;
 }
 
 const MethodEntry& MethodEntryOf(ImplicitMethod method) {
@@ -59,6 +95,22 @@ std::string ImplicitMethodNames() {
 ImplicitMethod ResolveAutoMethod(const std::vector<FieldTerm>& terms, bool blendsOrContacts) {
     return !blendsOrContacts && CheckPolynomialTerms(terms).empty() ? ImplicitMethod::Polynomial
                                                                      : ImplicitMethod::Patches;
+}
+
+std::string ChooseMethod(ImplicitMethod requested, const std::vector<FieldTerm>& terms,
+                         const ImplicitOptions& options, ImplicitMethod& chosen) {
+    const bool blendsOrContacts =
+        options.blendMode == BlendMode::Explicit || !options.contacts.empty();
+    const ImplicitMethod method = requested == ImplicitMethod::Auto
+                                      ? ResolveAutoMethod(terms, blendsOrContacts)
+                                      : requested;
+    const MethodEntry& entry = MethodEntryOf(method);
+    if (entry.check) {
+        std::string error = entry.check(terms);
+        if (!error.empty()) return error;
+    }
+    chosen = method;
+    return {};
 }
 
 }  // namespace rs

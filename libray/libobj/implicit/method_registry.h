@@ -1,30 +1,41 @@
 // Layer 8 of the implicit module (compiled into ray_obj): the registry of intersection
 // methods, name → factory, so the primitive and the command-line overrides dispatch through
-// one table. The octree methods (patches, kb89) are built by ImplicitSurface itself and have
-// no factory; the baselines (intersection_method.h) are made by theirs. `auto` is a rule,
-// not a method: it becomes patches or polynomial (ResolveAutoMethod).
+// one table. `auto` is a rule, not a method: it becomes patches or polynomial
+// (ResolveAutoMethod), so its row has no factory.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "libobj/implicit/implicit_options.h"
 #include "libobj/implicit/intersection_method.h"
+#include "libobj/implicit/object_stats.h"
 
 namespace rs {
-
-enum class ImplicitMethod { Patches, Kb89, March, Sphere, Segment, Polynomial, Exact, Auto };
 
 struct MethodEntry {
     ImplicitMethod method;
     const char* name;
-    // Makes the method for the plain sum `field` (which must outlive it); null for the
-    // octree methods.
-    std::unique_ptr<IntersectionMethod> (*create)(const Field& field, const MethodParams& params);
+    // Makes the method for the object whose plain sum is `whole`, with its options and
+    // statistics (both must outlive the method); null for `auto` only.
+    std::unique_ptr<IntersectionMethod> (*create)(const Field& whole,
+                                                  const ImplicitOptions& options,
+                                                  const ImplicitObjectStats& stats);
     // Why the method cannot serve these terms (a message naming a skeleton), or empty; null
     // when every object is accepted.
     std::string (*check)(const std::vector<FieldTerm>& terms);
 };
+
+// The parameters of the baseline methods (march, sphere, segment, polynomial, exact) in
+// `options`.
+MethodParams BaselineParams(const ImplicitOptions& options);
+
+// The octree settings of `method` (kb89's heuristics for kb89, the patches defaults
+// otherwise, unused by the baselines), keeping the declared depth and tolerance of
+// `declared` and, but for kb89, the declared Dratio.
+OctreeSettings MethodOctreeSettings(ImplicitMethod method, const OctreeSettings& declared,
+                                    double patchesDRatio);
 
 // Every method, in the order of ImplicitMethod.
 const std::vector<MethodEntry>& MethodRegistry();
@@ -43,5 +54,12 @@ std::string ImplicitMethodNames();
 // surface, patch.h); patches otherwise. The quartics find the first root to the polynomial
 // solver's accuracy with no octree to build, and cost O(log N) per ray for N skeletons.
 ImplicitMethod ResolveAutoMethod(const std::vector<FieldTerm>& terms, bool blendsOrContacts);
+
+// The one place a requested method becomes the method run: `auto` resolved by
+// ResolveAutoMethod from the terms and the blend graph and contacts of `options`, then the
+// method's check of the terms. Returns the method in `chosen`, or an error message naming a
+// skeleton when the method cannot serve the terms.
+std::string ChooseMethod(ImplicitMethod requested, const std::vector<FieldTerm>& terms,
+                         const ImplicitOptions& options, ImplicitMethod& chosen);
 
 }  // namespace rs

@@ -14,73 +14,17 @@
 #include <vector>
 
 #include "libobj/blob.h"
+#include "libobj/implicit/patches_method.h"
+#include "token_reader.h"
 #include "libsurf/surface.h"
 
 namespace rs {
 namespace {
 
-// An ArgReader over whitespace-separated tokens. The token TIME reads as the animated
-// number equal to the frame time.
-class TokenReader final : public ArgReader {
-  public:
-    explicit TokenReader(const std::string& text) {
-        size_t i = 0;
-        while (i < text.size()) {
-            size_t j = text.find_first_of(" \n", i);
-            if (j == std::string::npos) j = text.size();
-            if (j > i) tokens_.push_back(text.substr(i, j - i));
-            i = j + 1;
-        }
-    }
-    double ReadNumber() override {
-        if (!PeekNumber()) Fail("expected a number");
-        return std::strtod(tokens_[pos_++].c_str(), nullptr);
-    }
-    int ReadInt() override { return static_cast<int>(ReadNumber()); }
-    AnimatedValue ReadAnimatedNumber() override {
-        AnimatedValue v;
-        if (Accept("TIME")) {
-            v.at = [](double t) { return t; };
-        } else {
-            v.value = ReadNumber();
-        }
-        return v;
-    }
-    bool PeekNumber() override {
-        if (pos_ >= tokens_.size()) return false;
-        if (tokens_[pos_] == "TIME") return true;
-        char* end = nullptr;
-        std::strtod(tokens_[pos_].c_str(), &end);
-        return *end == '\0';
-    }
-    bool Accept(const char* word) override {
-        if (!Peek(word)) return false;
-        ++pos_;
-        return true;
-    }
-    bool Peek(const char* word) override { return pos_ < tokens_.size() && tokens_[pos_] == word; }
-    std::string ReadName() override {
-        if (pos_ >= tokens_.size() || PeekNumber()) Fail("expected a name");
-        return tokens_[pos_++];
-    }
-    std::string ReadFilename() override { return ReadName(); }
-    bool PeekFilename() override { return pos_ < tokens_.size() && !PeekNumber(); }
-    Surface ReadSurface() override { return Surface{}; }
-    bool FlipNormals() const override { return false; }
-    SourceLocation Location() const override { return {}; }
-    void Warn(const std::string& message) override { warnings.push_back(message); }
-    void Advise(const std::string& message) override { warnings.push_back(message); }
-    [[noreturn]] void Fail(const std::string& message) override {
-        throw FatalError(Severity::Abort, message);
-    }
-    bool AtEnd() const { return pos_ == tokens_.size(); }
-
-    std::vector<std::string> warnings;
-
-  private:
-    std::vector<std::string> tokens_;
-    size_t pos_ = 0;
-};
+// The patches of an object searched by method patches.
+const PatchesMethod& PatchesOf(const ImplicitSurface& surface) {
+    return dynamic_cast<const PatchesMethod&>(surface.SearchMethod());
+}
 
 std::shared_ptr<Primitive> Parse(const std::string& text) {
     TokenReader reader(text);
@@ -199,7 +143,7 @@ TEST(ImplicitSurface, ManyPatchesMatchTheSingleOctree) {
     ImplicitOptions single;
     single.method = ImplicitMethod::Kb89;
     ImplicitSurface whole(terms, single);
-    EXPECT_EQ(patches.PatchCount(), 150);
+    EXPECT_EQ(PatchesOf(patches).Patches().size(), 150u);
     int hits = 0;
     for (int i = 0; i < 600; ++i) {
         const Ray ray = SpreadRay(i, 9, {3, 3, 3});
@@ -476,7 +420,7 @@ constexpr const char* kContactPair =
 TEST(ImplicitContact, StatementsParseAndFailLocated) {
     auto p = Parse(kContactPair);
     ASSERT_TRUE(p);
-    EXPECT_EQ(static_cast<ImplicitSurface&>(*p).PatchCount(), 2);
+    EXPECT_EQ(PatchesOf(static_cast<ImplicitSurface&>(*p)).Patches().size(), 2u);
     for (const char* bad : {"point a 0 0 0 contact a c end", "point a 0 0 0 contact a a end",
                             "point a 0 0 0 point b 1 0 0 blend a b contact a b end",
                             "point a 0 0 0 point b 1 0 0 contact a b propagation a -1 end",
@@ -574,7 +518,7 @@ TEST(ImplicitContact, Figure7BoxesAreTheDeformationBoxes) {
         }
     }
     int deformed = 0;
-    for (const DeformedPatch& d : surface.Contacts()) {
+    for (const DeformedPatch& d : PatchesOf(surface).Contacts()) {
         if (!d.deformed) continue;
         ++deformed;
         std::string name = surface.Terms()[d.patch].name;  // one patch per term here

@@ -30,11 +30,12 @@ constexpr uint64_t kSeed = 20261122;
 std::unique_ptr<IntersectionMethod> Make(ImplicitMethod method, const Field& field,
                                          double tolerance, double threshold = 1,
                                          double step = 0) {
-    MethodParams params;
-    params.threshold = threshold;
-    params.tolerance = tolerance;
-    params.step = step;
-    return MethodEntryOf(method).create(field, params);
+    static const ImplicitObjectStats stats;
+    ImplicitOptions options;
+    options.threshold = threshold;
+    options.octree.tolerance = tolerance;
+    options.marchStep = step;
+    return MethodEntryOf(method).create(field, options, stats);
 }
 
 Field OnePoint(const Kernel& kernel, Vec3 c = {0, 0, 0}) {
@@ -203,10 +204,8 @@ TEST(ImplicitMethods, RegistryNamesRoundTrip) {
         ASSERT_TRUE(ParseImplicitMethod(e.name, m)) << e.name;
         EXPECT_EQ(m, e.method);
         EXPECT_STREQ(ImplicitMethodName(m), e.name);
-        // No factory: the octree methods, and auto (a rule resolving to another method).
-        bool noFactory = m == ImplicitMethod::Patches || m == ImplicitMethod::Kb89 ||
-                         m == ImplicitMethod::Auto;
-        EXPECT_EQ(e.create == nullptr, noFactory) << e.name;
+        // No factory: only auto (a rule resolving to another method).
+        EXPECT_EQ(e.create == nullptr, m == ImplicitMethod::Auto) << e.name;
     }
     ImplicitMethod m;
     EXPECT_FALSE(ParseImplicitMethod("bisection", m));
@@ -402,6 +401,33 @@ TEST(ImplicitMethods, ExactNegativeWeightsCarve) {
     got = exact->FirstRoot(Ray{{0, 0, -5}, {0, 0, 1}}, 0, 1e9);
     ASSERT_TRUE(got);
     EXPECT_NEAR(*got, 4, 1e-12);
+}
+
+// Every factory of the registry makes a method that finds a lone blob point's sphere,
+// radius R·sqrt(1 − sqrt(T/s)) (README.md, kernels): 0.5 for s = 1, R = 1 and
+// T = (1 − 0.25)² = 0.5625, to its tolerance, and reports the owning term where it reports
+// one (the octree methods through their own trees, built by this first ray).
+TEST(ImplicitMethods, EveryFactoryMakesAWorkingMethod) {
+    const Field field = OnePoint(Kernel::Blob(1, 1));
+    static const ImplicitObjectStats stats;
+    for (const MethodEntry& e : MethodRegistry()) {
+        if (!e.create) continue;
+        ImplicitOptions options;
+        options.method = e.method;
+        options.threshold = 0.5625;
+        if (e.method == ImplicitMethod::Kb89) options.octree = OctreeSettings::Kb89();
+        ASSERT_TRUE(!e.check || e.check(field.Terms()).empty()) << e.name;
+        std::unique_ptr<IntersectionMethod> method = e.create(field, options, stats);
+        ASSERT_TRUE(method) << e.name;
+        const Ray ray{{0, 0, -5}, {0, 0, 1}};
+        std::optional<MethodHit> hit = method->Intersect(ray, 0, 100);
+        ASSERT_TRUE(hit.has_value()) << e.name;
+        EXPECT_NEAR(hit->t, 4.5, 1e-6) << e.name;
+        EXPECT_TRUE(hit->term == 0 || hit->term == -1) << e.name;
+        EXPECT_TRUE(method->Bounds(field).Contains(ray.At(hit->t))) << e.name;
+        EXPECT_NEAR(method->Normal(field, ray.At(hit->t), hit->term).z, -1, 1e-6) << e.name;
+        EXPECT_FALSE(method->Intersect({{0, 2, -5}, {0, 0, 1}}, 0, 100)) << e.name;
+    }
 }
 
 }  // namespace

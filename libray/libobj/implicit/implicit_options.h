@@ -1,0 +1,38 @@
+// Layer 8 of the implicit module: the settings of one implicit object, as its block and
+// the command line give them (the block's defaults: implicit_syntax.h BlockSettings; the
+// octree's: OctreeSettings). The registry's factories make a method from them.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "libobj/implicit/contact.h"
+#include "libobj/implicit/lg_octree.h"
+#include "libobj/implicit/patch.h"
+
+namespace rs {
+
+enum class ImplicitMethod { Patches, Kb89, March, Sphere, Segment, Polynomial, Exact, Auto };
+
+struct ImplicitOptions {
+    double threshold = 1;
+    // The search and build settings of the octree methods; octree.tolerance is every
+    // method's root accuracy.
+    OctreeSettings octree;
+    // Gascuel's Dratio as declared, restored when the method becomes Patches again.
+    double patchesDRatio = 2;
+    // `octree auto`: each patch's octree depth from its own skeleton's thickness
+    // (PatchesMethod); otherwise octree.minDepth and maxDepth.
+    bool autoDepth = false;
+    ImplicitMethod method = ImplicitMethod::Patches;
+    // The march step (object-space distance); <= 0: DefaultMarchStep.
+    double marchStep = 0;
+    // The declared blend graph; used only in patches mode.
+    BlendMode blendMode = BlendMode::Automatic;
+    std::vector<std::pair<int, int>> blendPairs;  // term indices, Explicit mode only
+    // Colliding patches and their attenuation zones (contact.h); patches mode only.
+    std::vector<ContactPair> contacts;
+    std::vector<Propagation> propagations;
+};
+
+}  // namespace rs

@@ -1,0 +1,201 @@
+#include "libobj/implicit/patches_method.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rs {
+
+namespace {
+
+// The radius of the own term's surface alone, {r : w·f(r) = T} (f decreases on [0, R)),
+// or R when the term alone stays below T (its surface then exists only blended with others,
+// hence at least as thick as theirs).
+double LoneThickness(const FieldTerm& term, double threshold) {
+    const double radius = term.kernel.Radius();
+    auto above = [&](double r) { return term.weight * term.kernel.Value(r) > threshold; };
+    if (!above(0)) return radius;
+    double lo = 0, hi = radius;  // above(lo), !above(hi): f(R) = 0 < T / w
+    for (int i = 0; i < 60 && hi - lo > 1e-3 * radius; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (above(mid) ? lo : hi) = mid;
+    }
+    return lo > 0 ? lo : hi;
+}
+
+}  // namespace
+
+// Octree depth `auto`: the "deep enough" depth of heuristics 3 and 3bis (the depth where
+// cells the surface crosses become leaves) is the smallest at which the leaf edge is at
+// most the own skeleton's lone thickness τ (LoneThickness: the radius of its surface
+// alone), i.e. a leaf never spans more than half the thinnest cross-section of the patch's
+// own part, so the leaf's L and G describe one piece of surface rather than a whole
+// feature. minDepth = ceil(log2(longest patch-box edge / τ)), clamped to [2, 8] (depth 8
+// already means 16 million cells in a full tree, and the memory budget still applies);
+// the maximum depth is at least minDepth + 3. A lone point with the blob kernel of the
+// benchmark (R = 1, T = 0.6: τ = 0.47, edge 2) gets 3, Gascuel's setting.
+int PatchesMethod::AutoMinDepth(const Patch& patch, double threshold) {
+    const double tau = LoneThickness(patch.GetField().Terms()[patch.Own()], threshold);
+    const Vec3 extent = patch.Box().Extent();
+    const double edge = std::max({extent.x, extent.y, extent.z});
+    if (!(tau > 0) || !(edge > tau)) return 2;
+    return std::clamp(static_cast<int>(std::ceil(std::log2(edge / tau))), 2, 8);
+}
+
+PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
+                             const ImplicitObjectStats& stats)
+    : threshold_(options.threshold),
+      settings_(options.octree),
+      autoDepth_(options.autoDepth),
+      stats_(stats) {
+    std::vector<std::pair<int, int>> separate;
+    for (const ContactPair& c : options.contacts) separate.emplace_back(c.a, c.b);
+    patches_ = BuildPatches(whole, options.blendMode, options.blendPairs, separate);
+    patchOfTerm_.assign(whole.Terms().size(), -1);
+    for (size_t i = 0; i < patches_.size(); ++i) {
+        patchOfTerm_[patches_[i].Own()] = static_cast<int>(i);
+    }
+    trees_ = std::make_unique<LazyOctree[]>(patches_.size());
+    for (const Patch& p : patches_) bounds_.Extend(p.Box());
+    if (!options.contacts.empty()) {
+        // Contacts measure and deform with every patch's undeformed tree: build them all
+        // now, then hand them to the lazy holders as already built.
+        std::vector<LGOctree> trees;
+        trees.reserve(patches_.size());
+        for (const Patch& p : patches_) {
+            trees.push_back(BuildPatchOctree(p, threshold_, PatchSettings(p)));
+        }
+        contacts_ = ApplyContacts(whole.Terms(), options.contacts, options.propagations,
+                                  threshold_, settings_, patches_, trees);
+        for (size_t i = 0; i < trees.size(); ++i) {
+            trees_[i].Set(std::move(trees[i]));
+            stats_.CountTree(*trees_[i].Built());
+        }
+    }
+    bvhOrder_.resize(patches_.size());
+    for (size_t i = 0; i < patches_.size(); ++i) bvhOrder_[i] = static_cast<int>(i);
+    if (!patches_.empty()) {
+        bvh_.emplace_back();
+        BuildBvh(0, 0, static_cast<int>(patches_.size()));
+    }
+}
+
+OctreeSettings PatchesMethod::PatchSettings(const Patch& patch) const {
+    OctreeSettings settings = settings_;
+    if (autoDepth_) {
+        settings.minDepth = AutoMinDepth(patch, threshold_);
+        settings.maxDepth = std::min(16, std::max(settings.maxDepth, settings.minDepth + 3));
+    }
+    return settings;
+}
+
+const LGOctree& PatchesMethod::Tree(int i) const {
+    return trees_[i].Get([this, i] {
+        return stats_.BuildTree([this, i] {
+            return BuildPatchOctree(patches_[i], threshold_, PatchSettings(patches_[i]));
+        });
+    });
+}
+
+// Fills node `index` over the entries [first, first + count) of bvhOrder_, splitting them
+// at the median along the longest axis of their boxes' centres.
+void PatchesMethod::BuildBvh(int index, int first, int count) {
+    Bounds3 box, centres;
+    for (int i = first; i < first + count; ++i) {
+        box.Extend(patches_[bvhOrder_[i]].Box());
+        centres.Extend(patches_[bvhOrder_[i]].Box().Center());
+    }
+    bvh_[index].box = box;
+    if (count <= kBvhLeafSize) {
+        bvh_[index].first = first;
+        bvh_[index].count = count;
+        return;
+    }
+    Vec3 extent = centres.Extent();
+    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    auto begin = bvhOrder_.begin() + first;
+    std::nth_element(begin, begin + count / 2, begin + count, [&](int a, int b) {
+        double ca = patches_[a].Box().Center()[axis], cb = patches_[b].Box().Center()[axis];
+        return ca < cb || (ca == cb && a < b);
+    });
+    // Children are allocated as a consecutive pair so one index addresses both.
+    int left = static_cast<int>(bvh_.size());
+    bvh_.emplace_back();
+    bvh_.emplace_back();
+    bvh_[index].left = left;
+    BuildBvh(left, first, count / 2);
+    BuildBvh(left + 1, first + count / 2, count - count / 2);
+}
+
+std::optional<double> PatchesMethod::FirstRoot(const Ray& ray, double tMin, double tMax) const {
+    std::optional<MethodHit> hit = Intersect(ray, tMin, tMax);
+    return hit ? std::optional<double>(hit->t) : std::nullopt;
+}
+
+// Front-to-back BVH walk over the patch boxes, each clipped to (tMin, best) so nodes beyond
+// the best hit so far are skipped. A node is clipped once, when its parent pushes it, and
+// stacked with its entry parameter `near`: its clip to (tMin, best) with the smaller best
+// at its turn succeeds exactly when near <= best (near does not depend on the far end, and
+// the slab exits already passed near).
+std::optional<MethodHit> PatchesMethod::Intersect(const Ray& ray, double tMin,
+                                                  double tMax) const {
+    double best = tMax;
+    int bestPatch = -1;
+    struct Entry {
+        int node;
+        double near;
+    };
+    Entry stack[64];
+    int top = 0;
+    if (!bvh_.empty()) {
+        double t0 = tMin, t1 = best;
+        if (bvh_[0].box.ClipRay(ray, t0, t1)) stack[top++] = {0, t0};
+    }
+    while (top > 0) {
+        const Entry entry = stack[--top];
+        if (entry.near > best) continue;
+        const BvhNode& node = bvh_[entry.node];
+        if (node.count > 0) {
+            for (int i = node.first; i < node.first + node.count; ++i) {
+                int patch = bvhOrder_[i];
+                // A ray missing the own term's support meets no acceptable root: skip the
+                // patch before its tree is built (the result is the same).
+                if (!patches_[patch].MayHoldRoot(ray, tMin, best)) continue;
+                std::optional<double> t =
+                    PatchFirstRoot(patches_[patch], Tree(patch), ray, tMin, best);
+                if (t) {
+                    best = *t;
+                    bestPatch = patch;
+                }
+            }
+            continue;
+        }
+        // Visit the child whose box the ray enters first next (pushed last).
+        int a = node.left, b = node.left + 1;
+        double ta0 = tMin, ta1 = best, tb0 = tMin, tb1 = best;
+        bool hitA = bvh_[a].box.ClipRay(ray, ta0, ta1), hitB = bvh_[b].box.ClipRay(ray, tb0, tb1);
+        if (hitA && hitB && tb0 < ta0) {
+            std::swap(a, b);
+            std::swap(ta0, tb0);
+        }
+        if (hitA && hitB) {
+            stack[top++] = {b, tb0};
+            stack[top++] = {a, ta0};
+        } else if (hitA) {
+            stack[top++] = {a, ta0};
+        } else if (hitB) {
+            stack[top++] = {b, tb0};
+        }
+    }
+    if (bestPatch < 0) return std::nullopt;
+    return MethodHit{best, patches_[bestPatch].Own()};
+}
+
+Vec3 PatchesMethod::Normal(const Field& whole, const Vec3& p, int term) const {
+    const int patch = PatchOf(term);
+    if (patch < 0) return IntersectionMethod::Normal(whole, p, term);
+    const Field& field = patches_[patch].GetField();
+    const Vec3 n = Normalize(-field.Gradient(p));
+    return LengthSquared(n) != 0 ? n : AwayFromSkeleton(field, patches_[patch].Own(), p);
+}
+
+}  // namespace rs

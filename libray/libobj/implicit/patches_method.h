@@ -1,0 +1,82 @@
+// Layer 8 of the implicit module: method `patches`, Gascuel's implicit patches (1995). It
+// owns everything the method needs: one patch per positive-weight skeleton (patch.h; its
+// neighbours automatic or from the blend graph), the contacts that deform them (contact.h),
+// one LG octree per patch, built by the first ray reaching the patch (LazyOctree), and a
+// bounding volume hierarchy over the patch boxes that rays walk front to back.
+//
+// The octree settings are the object's (OctreeSettings: search tolerance and build
+// heuristics), with each patch's depth chosen from its own skeleton under `octree auto`
+// (AutoMinDepth). Objects with contacts build every tree at once (the contacts measure
+// with them); the others build each tree lazily.
+#pragma once
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "libobj/implicit/contact.h"
+#include "libobj/implicit/implicit_options.h"
+#include "libobj/implicit/intersection_method.h"
+#include "libobj/implicit/lazy_octree.h"
+#include "libobj/implicit/object_stats.h"
+#include "libobj/implicit/patch.h"
+
+namespace rs {
+
+class PatchesMethod final : public IntersectionMethod {
+  public:
+    // `whole` (the object's plain sum) and `stats` must outlive the method; `options`
+    // gives the threshold, octree settings, auto depth, blend graph and contacts.
+    PatchesMethod(const Field& whole, const ImplicitOptions& options,
+                  const ImplicitObjectStats& stats);
+
+    std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax) const override;
+    // The first root of every patch's search, the owning term being the patch's own.
+    std::optional<MethodHit> Intersect(const Ray& ray, double tMin, double tMax) const override;
+    // −∇ of the owning patch's field (equal to the object's field there), and where it
+    // vanishes the direction away from the patch's own skeleton.
+    Vec3 Normal(const Field& whole, const Vec3& p, int term) const override;
+    // The union of the patch boxes.
+    Bounds3 Bounds(const Field&) const override { return bounds_; }
+
+    const std::vector<Patch>& Patches() const { return patches_; }
+    // What the contacts did to the patches (contact.h; empty without contacts).
+    const std::vector<DeformedPatch>& Contacts() const { return contacts_; }
+
+    // The depth of heuristics 3 and 3bis for a patch under `octree auto` (see the .cpp).
+    static int AutoMinDepth(const Patch& patch, double threshold);
+
+  private:
+    // A bounding volume hierarchy over the patch boxes: leaves hold up to kBvhLeafSize
+    // consecutive entries of bvhOrder_, inner nodes their two children at left, left + 1.
+    struct BvhNode {
+        Bounds3 box;
+        int left = -1;   // first child (inner nodes)
+        int first = 0;   // first entry of bvhOrder_ (leaves)
+        int count = 0;   // > 0 for leaves
+    };
+    static constexpr int kBvhLeafSize = 2;
+
+    // The octree settings of a patch (the object's, with the auto depth).
+    OctreeSettings PatchSettings(const Patch& patch) const;
+    // Tree of patch i, building it on first use. Thread-safe.
+    const LGOctree& Tree(int i) const;
+    void BuildContacts(const std::vector<FieldTerm>& terms);
+    void BuildBvh(int index, int first, int count);
+    // The patch owning a term's hits (−1 for terms without a patch).
+    int PatchOf(int term) const { return term >= 0 ? patchOfTerm_[term] : -1; }
+
+    double threshold_;
+    OctreeSettings settings_;
+    bool autoDepth_;
+    const ImplicitObjectStats& stats_;
+    std::vector<Patch> patches_;
+    std::vector<int> patchOfTerm_;
+    std::unique_ptr<LazyOctree[]> trees_;  // one per patch
+    std::vector<DeformedPatch> contacts_;
+    Bounds3 bounds_;
+    std::vector<BvhNode> bvh_;  // root at 0 when there are patches
+    std::vector<int> bvhOrder_;
+};
+
+}  // namespace rs
