@@ -1,6 +1,7 @@
 #include "libobj/grid.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -13,26 +14,34 @@ namespace rs {
 
 namespace {
 
-// Per-ray record of the children already tested, direct-mapped on the child's index. A
-// collision evicts the older entry, so a child is at worst tested again, never skipped.
-// Lives on the caller's stack: no state shared between rendering threads.
-class Mailbox {
-  public:
-    Mailbox() { std::fill(std::begin(slots_), std::end(slots_), kEmpty); }
+// Mailboxes: each rendering thread keeps one stamp per child of every grid (grids take
+// disjoint ranges of slots, see PrepareFrame). A grid's Intersect takes a fresh stamp from the
+// thread's counter and marks a child's slot with it once tested, so each child is tested at
+// most once per call. Nothing is shared between threads, and a stale or cleared mark only
+// causes a repeated test, which cannot change the result (tMax only shrinks), so images do
+// not depend on the marks.
+std::atomic<size_t> gSlotsAllocated{0};
 
-    // Records `id` and returns whether it was already recorded.
-    bool CheckAndMark(uint32_t id) {
-        uint32_t& slot = slots_[id % kSlots];
-        if (slot == id) return true;
-        slot = id;
-        return false;
+struct ThreadMailbox {
+    std::vector<uint32_t> marks;  // one per allocated slot; 0 is never a stamp
+    uint32_t lastStamp = 0;
+
+    // A stamp not yet used on any of this thread's slots; makes room for every slot allocated
+    // so far (all grids are prepared before rays are traced).
+    uint32_t NewStamp() {
+        const size_t slots = gSlotsAllocated.load(std::memory_order_relaxed);
+        if (marks.size() < slots) marks.resize(slots, 0);
+        if (++lastStamp == 0) {  // wrapped after 2^32 calls: forget every mark
+            std::fill(marks.begin(), marks.end(), 0);
+            lastStamp = 1;
+        }
+        return lastStamp;
     }
-
-  private:
-    static constexpr uint32_t kEmpty = std::numeric_limits<uint32_t>::max();
-    static constexpr int kSlots = 64;
-    uint32_t slots_[kSlots];
 };
+
+thread_local ThreadMailbox tMailbox;
+
+const CounterId kBoundsTests = RegisterCounter("bounding box tests");
 
 }  // namespace
 
@@ -48,6 +57,7 @@ int GridAggregate::VoxelOf(double x, int axis) const {
 void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     bounded_.clear();
     unbounded_.clear();
+    childBoxes_.clear();
     cellStart_.clear();
     cellItems_.clear();
     bounds_ = Bounds3{};
@@ -60,6 +70,14 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
         }
     }
     if (bounded_.empty()) return;
+    if (bounded_.size() > slotCount_) {
+        slotCount_ = bounded_.size();
+        firstSlot_ = gSlotsAllocated.fetch_add(slotCount_, std::memory_order_relaxed);
+    }
+    // Padded like the registered boxes, so a hit a rounding error outside a flat child's
+    // box is never rejected.
+    childBoxes_.reserve(bounded_.size());
+    for (const Object* child : bounded_) childBoxes_.push_back(child->BoundsInParent().Padded(kEpsilon));
 
     // Padding the grid and every registered box by kEpsilon keeps a hit on a voxel face
     // registered on both sides despite round-off in the DDA, and gives flat boxes
@@ -149,12 +167,36 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
         }
     }
 
-    Mailbox tested;
+    // The children's box test reuses the reciprocal direction: an inlined slab test on the
+    // remaining segment (tMin, tMax), which with NaN (0·∞ on a slab plane) admits the box.
+    const Vec3 invDir{1 / ray.dir.x, 1 / ray.dir.y, 1 / ray.dir.z};
+    const auto boxAdmits = [&](const Bounds3& box) {
+        double near = tMin, far = tMax;
+        for (int a = 0; a < 3; ++a) {
+            double t0 = (box.lo[a] - ray.origin[a]) * invDir[a];
+            double t1 = (box.hi[a] - ray.origin[a]) * invDir[a];
+            if (t0 > t1) std::swap(t0, t1);
+            if (t0 > near) near = t0;
+            if (t1 < far) far = t1;
+            if (near > far) return false;
+        }
+        return true;
+    };
+    ThreadMailbox& mailbox = tMailbox;
+    const uint32_t stamp = mailbox.NewStamp();
+    uint64_t boxTests = 0;
     for (;;) {
         const int c = CellIndex(cell[0], cell[1], cell[2]);
         for (uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
             const uint32_t id = cellItems_[k];
-            if (tested.CheckAndMark(id)) continue;
+            // Indexed afresh each time: a child's own search takes stamps too (nested grids).
+            uint32_t& mark = mailbox.marks[firstSlot_ + id];
+            if (mark == stamp) continue;
+            mark = stamp;
+            // A child whose box the remaining segment misses cannot be hit later either
+            // (the segment only shrinks), so marking it tested is exact.
+            ++boxTests;
+            if (!boxAdmits(childBoxes_[id])) continue;
             if (bounded_[id]->Intersect(ray, tMin, tMax, hit)) found = true;
         }
         int axis = tNext[0] < tNext[1] ? 0 : 1;
@@ -166,6 +208,7 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
         if (cell[axis] == stop[axis]) break;
         tNext[axis] += tDelta[axis];
     }
+    Count(kBoundsTests, boxTests);
     return found;
 }
 

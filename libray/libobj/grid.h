@@ -22,9 +22,9 @@ class GridAggregate final : public Aggregate {
     const char* TypeName() const override { return "grid"; }
 
     // Unbounded children are tested first, then the voxels the segment (tMin, tMax) crosses,
-    // front to back, until the nearest hit so far lies within the current voxel. A child
-    // registered in several voxels is tested once per ray, up to collisions in a small
-    // per-ray table (a repeated test is harmless: tMax only shrinks). Thread-safe.
+    // front to back, until the nearest hit so far lies within the current voxel. Each bounded
+    // child is considered at most once per call (per-thread mailboxes) and tested only when
+    // the remaining segment meets its box. Thread-safe.
     // Requires PrepareFrame to have run.
     bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const override;
 
@@ -48,6 +48,9 @@ class GridAggregate final : public Aggregate {
     Vec3 voxelSize_;
     std::vector<const Object*> bounded_;
     std::vector<const Object*> unbounded_;
+    std::vector<Bounds3> childBoxes_;  // bounded_[i]'s box padded by kEpsilon
+    // This grid's mailbox slots: firstSlot_ + i is bounded_[i]'s (see grid.cpp).
+    size_t firstSlot_ = 0, slotCount_ = 0;
     // Compressed rows: cell c holds bounded_[cellItems_[k]] for cellStart_[c] <= k <
     // cellStart_[c + 1].
     std::vector<uint32_t> cellStart_;
