@@ -21,7 +21,8 @@ class BoundingVolumeHierarchy {
     // Calls visit(i) for every item whose box meets the ray segment (tMin, tMax), nearer
     // subtrees first. visit returns true when it found a hit, and may then have shrunk tMax;
     // later boxes are clipped against the shrunken segment. Returns whether any visit hit.
-    template <class Visit>
+    // With kStopAtFirstHit the walk returns at the first visit that hits (occlusion).
+    template <bool kStopAtFirstHit = false, class Visit>
     bool Traverse(const Ray& ray, double tMin, double& tMax, Visit&& visit) const {
         if (nodes_.empty()) return false;
         const Vec3 invDir{1 / ray.dir.x, 1 / ray.dir.y, 1 / ray.dir.z};
@@ -34,8 +35,11 @@ class BoundingVolumeHierarchy {
             const Node& node = nodes_[stack[--top]];
             if (!Overlaps(node.box, ray, invDir, tMin, tMax)) continue;
             if (node.count > 0) {
-                for (int i = 0; i < node.count; ++i)
-                    if (visit(items_[node.first + i])) found = true;
+                for (int i = 0; i < node.count; ++i) {
+                    if (!visit(items_[node.first + i])) continue;
+                    if (kStopAtFirstHit) return true;
+                    found = true;
+                }
                 continue;
             }
             // Push the far child first so the near one is visited next.
@@ -44,7 +48,11 @@ class BoundingVolumeHierarchy {
             if (top + 2 > 64) {
                 // Deeper than any tree Build makes (it halves the items each level); visit
                 // the rest linearly rather than overflow.
-                for (int item : items_) if (visit(item)) found = true;
+                for (int item : items_) {
+                    if (!visit(item)) continue;
+                    if (kStopAtFirstHit) return true;
+                    found = true;
+                }
                 return found;
             }
             stack[top++] = farChild;

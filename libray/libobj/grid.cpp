@@ -136,10 +136,25 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
     for (const Object* child : unbounded_) {
         if (child->Intersect(ray, tMin, tMax, hit)) found = true;
     }
-    if (bounded_.empty()) return found;
+    return Walk<false>(ray, tMin, tMax, [&](const Object* child) {
+               return child->Intersect(ray, tMin, tMax, hit);
+           }) ||
+           found;
+}
 
+bool GridAggregate::Occluded(const Ray& ray, double tMin, double tMax) const {
+    for (const Object* child : unbounded_) {
+        if (child->Occluded(ray, tMin, tMax)) return true;
+    }
+    return Walk<true>(ray, tMin, tMax,
+                      [&](const Object* child) { return child->Occluded(ray, tMin, tMax); });
+}
+
+template <bool kStopAtFirstHit, class Test>
+bool GridAggregate::Walk(const Ray& ray, double tMin, double& tMax, Test&& test) const {
+    if (bounded_.empty()) return false;
     double tEnter = tMin, tExit = tMax;
-    if (!gridBox_.ClipRay(ray, tEnter, tExit)) return found;
+    if (!gridBox_.ClipRay(ray, tEnter, tExit)) return false;
 
     // 3-D DDA (Amanatides & Woo): tNext[a] is the t at which the ray leaves the current
     // cell through a face normal to axis a, tDelta[a] the t it takes to cross one cell.
@@ -182,6 +197,7 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
         }
         return true;
     };
+    bool found = false;
     ThreadMailbox& mailbox = tMailbox;
     const uint32_t stamp = mailbox.NewStamp();
     uint64_t boxTests = 0;
@@ -197,7 +213,12 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
             // (the segment only shrinks), so marking it tested is exact.
             ++boxTests;
             if (!boxAdmits(childBoxes_[id])) continue;
-            if (bounded_[id]->Intersect(ray, tMin, tMax, hit)) found = true;
+            if (!test(bounded_[id])) continue;
+            found = true;
+            if (kStopAtFirstHit) {
+                Count(kBoundsTests, boxTests);
+                return true;
+            }
         }
         int axis = tNext[0] < tNext[1] ? 0 : 1;
         if (tNext[2] < tNext[axis]) axis = 2;

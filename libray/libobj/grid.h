@@ -27,6 +27,8 @@ class GridAggregate final : public Aggregate {
     // the remaining segment meets its box. Thread-safe.
     // Requires PrepareFrame to have run.
     bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const override;
+    // The same walk, returning at the first hit.
+    bool Occluded(const Ray& ray, double tMin, double tMax) const override;
 
     // The box of the bounded children (object space) and whether there are any.
     Bounds3 Bounds() const override { return bounds_; }
@@ -38,6 +40,11 @@ class GridAggregate final : public Aggregate {
     void PrepareFrame(double frameTime, double shutter) override;
 
   private:
+    // The voxel walk over the bounded children: test(child) searches one child (it may shrink
+    // tMax through the caller's state, which the walk reads back) and returns whether it hit.
+    // Returns whether any test hit; with kStopAtFirstHit returns at the first.
+    template <bool kStopAtFirstHit, class Test>
+    bool Walk(const Ray& ray, double tMin, double& tMax, Test&& test) const;
     // The voxel index along `axis` holding coordinate x (clamped to the grid).
     int VoxelOf(double x, int axis) const;
     int CellIndex(int ix, int iy, int iz) const { return (iz * n_[1] + iy) * n_[0] + ix; }
