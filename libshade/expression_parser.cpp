@@ -171,12 +171,15 @@ class ExpressionParser {
 bool ReadLiteral(TokenStream& tokens, double& value) {
     const Token& t = tokens.Peek();
     if (t.kind == TokenKind::Number) {
-        value = tokens.Next().number;
+        value = t.number;
+        tokens.Skip();
         return true;
     }
     if ((t.IsChar('-') || t.IsChar('+')) && tokens.Peek(1).kind == TokenKind::Number) {
-        const bool negative = tokens.Next().IsChar('-');
-        const double v = tokens.Next().number;
+        const bool negative = tokens.Peek().IsChar('-');
+        const double v = tokens.Peek(1).number;
+        tokens.Skip();
+        tokens.Skip();
         value = negative ? -v : v;
         return true;
     }
