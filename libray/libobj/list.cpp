@@ -56,7 +56,7 @@ void ListAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     }
     hasBounded_ = !bounded_.empty();
     if (bounded_.size() > kHierarchyThreshold)
-        hierarchy_.Build(boxes);
+        hierarchy_.Build(boxes, BoundingVolumeHierarchy::Split::SurfaceArea);
     else
         hierarchy_ = BoundingVolumeHierarchy{};
 }
