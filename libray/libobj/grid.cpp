@@ -74,43 +74,36 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
         slotCount_ = bounded_.size();
         firstSlot_ = gSlotsAllocated.fetch_add(slotCount_, std::memory_order_relaxed);
     }
-    // Padded like the registered boxes, so a hit a rounding error outside a flat child's
-    // box is never rejected.
+    // The children's boxes padded by kEpsilon: the registered boxes (a hit on a voxel face
+    // stays registered on both sides despite round-off in the DDA, and flat boxes, e.g. of
+    // polygons, get a non-zero extent) and the boxes the walk tests, so a hit a rounding
+    // error outside a flat child's box is never rejected.
     childBoxes_.reserve(bounded_.size());
     for (const Object* child : bounded_) childBoxes_.push_back(child->BoundsInParent().Padded(kEpsilon));
 
-    // Padding the grid and every registered box by kEpsilon keeps a hit on a voxel face
-    // registered on both sides despite round-off in the DDA, and gives flat boxes
-    // (polygons) a non-zero extent.
     gridBox_ = bounds_.Padded(kEpsilon);
     const Vec3 extent = gridBox_.Extent();
     voxelSize_ = {extent.x / n_[0], extent.y / n_[1], extent.z / n_[2]};
 
-    // Two passes: count the entries of each cell, then fill them in.
-    const size_t cellCount = static_cast<size_t>(n_[0]) * n_[1] * n_[2];
-    cellStart_.assign(cellCount + 1, 0);
-    auto forEachCell = [&](const Bounds3& box, auto&& visit) {
-        if (box.IsEmpty()) return;
-        const Bounds3 padded = box.Padded(kEpsilon);
-        int lo[3], hi[3];
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = VoxelOf(padded.lo[a], a);
-            hi[a] = VoxelOf(padded.hi[a], a);
-        }
-        for (int z = lo[2]; z <= hi[2]; ++z)
-            for (int y = lo[1]; y <= hi[1]; ++y)
-                for (int x = lo[0]; x <= hi[0]; ++x) visit(CellIndex(x, y, z));
-    };
-    // The entry count first, from each box's voxel range, so a grid too fine for its
-    // children is refused before any entry is stored or visited.
+    // Each child's voxel range, computed once: lo[3], hi[3] (hi < lo for an empty box).
+    std::vector<int> ranges(6 * bounded_.size());
+    // The entry count first, so a grid too fine for its children is refused before any
+    // entry is stored or visited.
     uint64_t entries = 0;
-    for (const Object* child : bounded_) {
-        const Bounds3 box = child->BoundsInParent();
-        if (box.IsEmpty()) continue;
-        const Bounds3 padded = box.Padded(kEpsilon);
+    for (size_t i = 0; i < bounded_.size(); ++i) {
+        const Bounds3& box = childBoxes_[i];
+        int* r = &ranges[6 * i];
+        if (box.IsEmpty()) {
+            std::fill(r, r + 6, 0);
+            r[3] = -1;
+            continue;
+        }
         uint64_t cells = 1;
-        for (int a = 0; a < 3; ++a)
-            cells *= static_cast<uint64_t>(VoxelOf(padded.hi[a], a) - VoxelOf(padded.lo[a], a) + 1);
+        for (int a = 0; a < 3; ++a) {
+            r[a] = VoxelOf(box.lo[a], a);
+            r[3 + a] = VoxelOf(box.hi[a], a);
+            cells *= static_cast<uint64_t>(r[3 + a] - r[a] + 1);
+        }
         entries += cells;
     }
     if (entries > static_cast<uint64_t>(Limits().gridEntries)) {
@@ -120,14 +113,21 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
                n_[0], n_[1], n_[2], bounded_.size(), static_cast<unsigned long long>(entries),
                static_cast<unsigned long long>(Limits().gridEntries));
     }
-    for (const Object* child : bounded_) {
-        forEachCell(child->BoundsInParent(), [&](int c) { ++cellStart_[c + 1]; });
-    }
+    const auto forEachCell = [&](size_t i, auto&& visit) {
+        const int* r = &ranges[6 * i];
+        for (int z = r[2]; z <= r[5]; ++z)
+            for (int y = r[1]; y <= r[4]; ++y)
+                for (int x = r[0]; x <= r[3]; ++x) visit(CellIndex(x, y, z));
+    };
+    // Two passes: count the entries of each cell, then fill them in.
+    const size_t cellCount = static_cast<size_t>(n_[0]) * n_[1] * n_[2];
+    cellStart_.assign(cellCount + 1, 0);
+    for (size_t i = 0; i < bounded_.size(); ++i) forEachCell(i, [&](int c) { ++cellStart_[c + 1]; });
     for (size_t c = 0; c < cellCount; ++c) cellStart_[c + 1] += cellStart_[c];
     cellItems_.resize(cellStart_[cellCount]);
     std::vector<uint32_t> cursor(cellStart_.begin(), cellStart_.end() - 1);
     for (uint32_t i = 0; i < bounded_.size(); ++i) {
-        forEachCell(bounded_[i]->BoundsInParent(), [&](int c) { cellItems_[cursor[c]++] = i; });
+        forEachCell(i, [&](int c) { cellItems_[cursor[c]++] = i; });
     }
 }
 
