@@ -27,7 +27,8 @@ struct ThreadMailbox {
     uint32_t lastStamp = 0;
 
     // A stamp not yet used on any of this thread's slots; makes room for every slot allocated
-    // so far (all grids are prepared before rays are traced).
+    // so far. Slots are allocated only by PrepareFrame, which never runs during a walk, so
+    // the calls of nested walks find the room made and never move `marks`.
     uint32_t NewStamp() {
         const size_t slots = gSlotsAllocated.load(std::memory_order_relaxed);
         if (marks.size() < slots) marks.resize(slots, 0);
@@ -200,13 +201,13 @@ bool GridAggregate::Walk(const Ray& ray, double tMin, double& tMax, Test&& test)
     bool found = false;
     ThreadMailbox& mailbox = tMailbox;
     const uint32_t stamp = mailbox.NewStamp();
+    uint32_t* const marks = mailbox.marks.data() + firstSlot_;  // stays put, see NewStamp
     uint64_t boxTests = 0;
     for (;;) {
         const int c = CellIndex(cell[0], cell[1], cell[2]);
         for (uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
             const uint32_t id = cellItems_[k];
-            // Indexed afresh each time: a child's own search takes stamps too (nested grids).
-            uint32_t& mark = mailbox.marks[firstSlot_ + id];
+            uint32_t& mark = marks[id];
             if (mark == stamp) continue;
             mark = stamp;
             // A child whose box the remaining segment misses cannot be hit later either
