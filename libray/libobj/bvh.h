@@ -41,7 +41,7 @@ class BoundingVolumeHierarchy {
         bool found = false;
         while (top > 0) {
             const Node& node = nodes_[stack[--top]];
-            if (!Overlaps(node.box, ray, invDir, tMin, tMax)) continue;
+            if (!node.box.MeetsSegment(ray, invDir, tMin, tMax)) continue;
             if (node.count > 0) {
                 for (int i = 0; i < node.count; ++i) {
                     if (!visit(items_[node.first + i])) continue;
@@ -101,20 +101,6 @@ class BoundingVolumeHierarchy {
         int axis = 0;
     };
 
-    // Slab test of the segment (tMin, tMax) against `box`, with IEEE infinities for
-    // axis-parallel directions; NaN (0·∞ on a slab plane) leaves the range alone.
-    static bool Overlaps(const Bounds3& box, const Ray& ray, const Vec3& invDir, double tMin,
-                         double tMax) {
-        for (int a = 0; a < 3; ++a) {
-            double t0 = (box.lo[a] - ray.origin[a]) * invDir[a];
-            double t1 = (box.hi[a] - ray.origin[a]) * invDir[a];
-            if (t0 > t1) std::swap(t0, t1);
-            if (t0 > tMin) tMin = t0;
-            if (t1 < tMax) tMax = t1;
-            if (tMin > tMax) return false;
-        }
-        return true;
-    }
     int BuildNode(std::vector<int>& items, int begin, int end, const std::vector<Bounds3>& boxes,
                   Split split, int depth);
     // The SAH split of items[begin, end) (centroid bounds `centroids`, node box `box`): when

@@ -183,21 +183,8 @@ bool GridAggregate::Walk(const Ray& ray, double tMin, double& tMax, Test&& test)
         }
     }
 
-    // The children's box test reuses the reciprocal direction: an inlined slab test on the
-    // remaining segment (tMin, tMax), which with NaN (0·∞ on a slab plane) admits the box.
+    // The children's box tests share the reciprocal direction.
     const Vec3 invDir{1 / ray.dir.x, 1 / ray.dir.y, 1 / ray.dir.z};
-    const auto boxAdmits = [&](const Bounds3& box) {
-        double near = tMin, far = tMax;
-        for (int a = 0; a < 3; ++a) {
-            double t0 = (box.lo[a] - ray.origin[a]) * invDir[a];
-            double t1 = (box.hi[a] - ray.origin[a]) * invDir[a];
-            if (t0 > t1) std::swap(t0, t1);
-            if (t0 > near) near = t0;
-            if (t1 < far) far = t1;
-            if (near > far) return false;
-        }
-        return true;
-    };
     bool found = false;
     ThreadMailbox& mailbox = tMailbox;
     const uint32_t stamp = mailbox.NewStamp();
@@ -213,7 +200,7 @@ bool GridAggregate::Walk(const Ray& ray, double tMin, double& tMax, Test&& test)
             // A child whose box the remaining segment misses cannot be hit later either
             // (the segment only shrinks), so marking it tested is exact.
             ++boxTests;
-            if (!boxAdmits(childBoxes_[id])) continue;
+            if (!childBoxes_[id].MeetsSegment(ray, invDir, tMin, tMax)) continue;
             if (!test(bounded_[id])) continue;
             found = true;
             if (kStopAtFirstHit) {
