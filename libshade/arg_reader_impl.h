@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "libcommon/arg_reader.h"
 #include "libshade/lexer.h"
@@ -19,16 +20,16 @@ class ParserServices {
     virtual TokenStream& Tokens() = 0;
     virtual const SymbolTable& Symbols() const = 0;
     // Parses a surface expression (spec §2 `surface`) in the current scope.
-    virtual Surface ParseSurfaceValue(const std::string& usage) = 0;
+    virtual Surface ParseSurfaceValue(std::string_view usage) = 0;
     virtual bool FlipNormals() const = 0;
 };
 
 class TokenArgReader final : public ArgReader {
   public:
     // `keyword` locates the keyword being read (for Warn/Fail); `usage` is appended to
-    // fatal messages.
-    TokenArgReader(ParserServices& parser, SourceLocation keyword, std::string usage)
-        : parser_(parser), keyword_(std::move(keyword)), usage_(std::move(usage)) {}
+    // fatal messages and must outlive the reader (it is a literal or a table's text).
+    TokenArgReader(ParserServices& parser, SourceLocation keyword, std::string_view usage)
+        : parser_(parser), keyword_(std::move(keyword)), usage_(usage) {}
 
     double ReadNumber() override;
     int ReadInt() override;
@@ -56,12 +57,12 @@ class TokenArgReader final : public ArgReader {
     ExprPtr ReadExpression();
     // Fails at the next token: "Expected <what>, found <token>".
     [[noreturn]] void FailExpected(const std::string& what);
-    const std::string& usage() const { return usage_; }
+    std::string_view usage() const { return usage_; }
 
   private:
     ParserServices& parser_;
     SourceLocation keyword_;
-    std::string usage_;
+    std::string_view usage_;
 };
 
 }  // namespace rs

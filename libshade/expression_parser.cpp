@@ -2,11 +2,12 @@
 
 namespace rs {
 
-void FailAt(const SourceLocation& where, const std::string& usage, const std::string& message) {
+void FailAt(const SourceLocation& where, std::string_view usage, const std::string& message) {
     if (usage.empty())
         Report(Severity::Abort, where, "%s", message.c_str());
     else
-        Report(Severity::Abort, where, "%s (usage: %s)", message.c_str(), usage.c_str());
+        Report(Severity::Abort, where, "%s (usage: %.*s)", message.c_str(),
+               static_cast<int>(usage.size()), usage.data());
     throw FatalError(Severity::Abort, message);  // not reached: Report throws for Abort
 }
 
@@ -14,7 +15,7 @@ namespace {
 
 class ExpressionParser {
   public:
-    ExpressionParser(TokenStream& tokens, const SymbolTable& symbols, const std::string& usage)
+    ExpressionParser(TokenStream& tokens, const SymbolTable& symbols, std::string_view usage)
         : tokens_(tokens), symbols_(symbols), usage_(usage) {}
 
     ExprPtr Top() {
@@ -162,7 +163,7 @@ class ExpressionParser {
 
     TokenStream& tokens_;
     const SymbolTable& symbols_;
-    const std::string& usage_;
+    std::string_view usage_;
     int nesting_ = 0;
 };
 
@@ -171,12 +172,15 @@ class ExpressionParser {
 bool ReadLiteral(TokenStream& tokens, double& value) {
     const Token& t = tokens.Peek();
     if (t.kind == TokenKind::Number) {
-        value = tokens.Next().number;
+        value = t.number;
+        tokens.Skip();
         return true;
     }
     if ((t.IsChar('-') || t.IsChar('+')) && tokens.Peek(1).kind == TokenKind::Number) {
-        const bool negative = tokens.Next().IsChar('-');
-        const double v = tokens.Next().number;
+        const bool negative = tokens.Peek().IsChar('-');
+        const double v = tokens.Peek(1).number;
+        tokens.Skip();
+        tokens.Skip();
         value = negative ? -v : v;
         return true;
     }
@@ -189,7 +193,7 @@ bool PeekExpression(TokenStream& tokens) {
     return (t.IsChar('-') || t.IsChar('+')) && tokens.Peek(1).kind == TokenKind::Number;
 }
 
-ExprPtr ParseExpression(TokenStream& tokens, const SymbolTable& symbols, const std::string& usage) {
+ExprPtr ParseExpression(TokenStream& tokens, const SymbolTable& symbols, std::string_view usage) {
     return ExpressionParser(tokens, symbols, usage).Top();
 }
 

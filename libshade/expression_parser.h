@@ -29,10 +29,10 @@ bool ReadLiteral(TokenStream& tokens, double& value);
 // (syntax, undefined names, misuse of functions, wrong argument counts) are reported with
 // the offending token's location; `usage`, when non-empty, is appended to messages.
 ExprPtr ParseExpression(TokenStream& tokens, const SymbolTable& symbols,
-                        const std::string& usage = "");
+                        std::string_view usage = {});
 
 // Reports `message` at `where` (Abort), appending "(usage: ...)" when `usage` is non-empty.
-[[noreturn]] void FailAt(const SourceLocation& where, const std::string& usage,
+[[noreturn]] void FailAt(const SourceLocation& where, std::string_view usage,
                          const std::string& message);
 
 }  // namespace rs

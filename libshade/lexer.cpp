@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <string_view>
+#include <mutex>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace rs {
 
@@ -100,7 +102,14 @@ std::string Token::Describe() const {
 }
 
 Lexer::Lexer(std::string text, std::string fileName)
-    : text_(std::move(text)), file_(std::make_shared<const std::string>(std::move(fileName))) {}
+    : text_(std::move(text)), file_(InternFileName(fileName)) {}
+
+const std::string* InternFileName(const std::string& name) {
+    static std::mutex mutex;
+    static std::unordered_set<std::string> names;  // elements never move
+    std::lock_guard<std::mutex> lock(mutex);
+    return &*names.insert(name).first;
+}
 
 void Lexer::Fail(const char* format, const std::string& arg) const {
     const std::string quoted = Abbreviate(arg);
@@ -166,7 +175,7 @@ void Lexer::ReadLineMarker() {
     }
     if (i != line.size()) Fail("Unknown '#' control: %s", line);
     pos_ = eol < text_.size() ? eol + 1 : eol;
-    if (file != *file_) file_ = std::make_shared<const std::string>(std::move(file));
+    if (file != *file_) file_ = InternFileName(file);
     line_ = number;
     atLineStart_ = true;
 }
@@ -271,16 +280,15 @@ Token Lexer::Next() {
     return tok;
 }
 
-const Token& TokenStream::Peek(size_t k) {
-    while (ahead_.size() <= k) ahead_.push_back(lexer_.Next());
-    return ahead_[k];
-}
-
-Token TokenStream::Next() {
-    if (ahead_.empty()) return lexer_.Next();
-    Token t = std::move(ahead_.front());
-    ahead_.pop_front();
-    return t;
+void TokenStream::Push() {
+    if (count_ == ring_.size()) {
+        std::vector<Token> grown(2 * ring_.size());
+        for (size_t i = 0; i < count_; ++i) grown[i] = std::move(ring_[(head_ + i) & (ring_.size() - 1)]);
+        ring_ = std::move(grown);
+        head_ = 0;
+    }
+    ring_[(head_ + count_) & (ring_.size() - 1)] = lexer_.Next();
+    ++count_;
 }
 
 }  // namespace rs

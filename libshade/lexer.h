@@ -7,10 +7,10 @@
 #pragma once
 
 #include <cstddef>
-#include <deque>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "libcommon/error.h"
 
@@ -34,14 +34,14 @@ struct Token {
     std::string text;     // the spelling as written
     std::string keyword;  // canonical keyword (Keyword tokens only)
     double number = 0;
-    // Where the token starts: the file name, shared by the tokens of a file (null only in a
-    // default-constructed Token), and the line.
-    std::shared_ptr<const std::string> file;
+    // Where the token starts: the file name, interned for the whole process (InternFileName;
+    // null only in a default-constructed Token), and the line.
+    const std::string* file = nullptr;
     int line = 0;
 
     SourceLocation Location() const { return {file ? *file : std::string(), line}; }
 
-    bool IsKeyword(const char* k) const { return kind == TokenKind::Keyword && keyword == k; }
+    bool IsKeyword(std::string_view k) const { return kind == TokenKind::Keyword && keyword == k; }
     bool IsChar(char c) const {
         return kind == TokenKind::Char && text.size() == 1 && text[0] == c;
     }
@@ -55,6 +55,10 @@ std::string CanonicalKeyword(const std::string& word);
 // Whether `word` spells the keyword whose canonical spelling is `keyword` (it is that
 // spelling or one of its synonyms); cheaper than comparing CanonicalKeyword(word).
 bool SpellsKeyword(std::string_view word, std::string_view keyword);
+
+// The one copy of `name` kept for the rest of the process (thread-safe; there are few
+// distinct file names, and tokens then carry a plain pointer instead of a counted one).
+const std::string* InternFileName(const std::string& name);
 
 class Lexer {
   public:
@@ -72,24 +76,46 @@ class Lexer {
 
     std::string text_;
     size_t pos_ = 0;
-    std::shared_ptr<const std::string> file_;
+    const std::string* file_;  // interned
     int line_ = 1;
     bool atLineStart_ = true;
 };
 
-// A lexer with arbitrary lookahead.
+// A lexer with arbitrary lookahead, buffered in a ring that is reused (no allocation per
+// token).
 class TokenStream {
   public:
     TokenStream(std::string text, std::string fileName)
-        : lexer_(std::move(text), std::move(fileName)) {}
+        : lexer_(std::move(text), std::move(fileName)), ring_(kInitialRing) {}
 
-    // The k-th token ahead (0 = next), without consuming it.
-    const Token& Peek(size_t k = 0);
-    Token Next();
+    // The k-th token ahead (0 = next), without consuming it. The reference stays valid until
+    // the next call of Next, or of Peek with a k of kInitialRing or more (which grows the ring;
+    // the parser looks at most one token past the next).
+    const Token& Peek(size_t k = 0) {
+        while (count_ <= k) Push();
+        return ring_[(head_ + k) & (ring_.size() - 1)];
+    }
+    // Drops the next token.
+    void Skip() {
+        if (count_ == 0) Push();
+        head_ = (head_ + 1) & (ring_.size() - 1);
+        --count_;
+    }
+    Token Next() {
+        if (count_ == 0) return lexer_.Next();
+        Token t = std::move(ring_[head_]);
+        head_ = (head_ + 1) & (ring_.size() - 1);
+        --count_;
+        return t;
+    }
 
   private:
+    static constexpr size_t kInitialRing = 4;  // a power of two, like every later size
+    void Push();  // lexes one more token into the ring, growing it when full
+
     Lexer lexer_;
-    std::deque<Token> ahead_;
+    std::vector<Token> ring_;
+    size_t head_ = 0, count_ = 0;  // ring_[head_] is the next token; count_ are buffered
 };
 
 }  // namespace rs

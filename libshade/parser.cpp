@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string_view>
 #include <unordered_map>
 
 #include "libcommon/limits.h"
@@ -27,11 +28,12 @@ constexpr int kMaxNodeDepth = HitRecord::kMaxPath - 1;
 
 bool IsSurfaceAttribute(const Token& t) {
     if (t.kind != TokenKind::Keyword) return false;
-    static const char* const kAttributes[] = {"ambient", "diffuse", "specular", "specpow",
-                                              "body",    "extinct", "transp",   "reflect",
-                                              "index",   "translu", "noshadow"};
+    // Views, so that most words are rejected by their length (this runs after every object).
+    static constexpr std::string_view kAttributes[] = {"ambient", "diffuse", "specular", "specpow",
+                                                       "body",    "extinct", "transp",   "reflect",
+                                                       "index",   "translu", "noshadow"};
     return std::any_of(std::begin(kAttributes), std::end(kAttributes),
-                       [&](const char* a) { return t.keyword == a; });
+                       [&](std::string_view a) { return t.keyword == a; });
 }
 
 bool IsAggregateKeyword(const std::string& k) {
@@ -88,7 +90,7 @@ class Parser final : public ParserServices {
 
     TokenStream& Tokens() override { return tokens_; }
     const SymbolTable& Symbols() const override { return symbols_; }
-    Surface ParseSurfaceValue(const std::string& usage) override { return *ParseSurface(usage); }
+    Surface ParseSurfaceValue(std::string_view usage) override { return *ParseSurface(usage); }
     bool FlipNormals() const override { return scene_.options.flipNormals; }
 
   private:
@@ -109,7 +111,7 @@ class Parser final : public ParserServices {
     void ParsePrint();
 
     bool PeekSurfaceStart();
-    std::shared_ptr<const Surface> ParseSurface(const std::string& usage);
+    std::shared_ptr<const Surface> ParseSurface(std::string_view usage);
     void ParseSurfaceAttribute(TokenArgReader& args, Surface& s);
     void ParseSurfaceDefinition();
 
@@ -483,7 +485,7 @@ bool Parser::PeekSurfaceStart() {
     return t.kind == TokenKind::Name || t.IsKeyword("cursurf") || IsSurfaceAttribute(t);
 }
 
-std::shared_ptr<const Surface> Parser::ParseSurface(const std::string& usage) {
+std::shared_ptr<const Surface> Parser::ParseSurface(std::string_view usage) {
     Token first = tokens_.Peek();
     TokenArgReader args(*this, first.Location(), usage);
     Surface base;

@@ -39,8 +39,17 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry() {
 }
 
 const PrimitiveEntry* FindPrimitive(const std::string& keyword) {
-    for (const PrimitiveEntry& row : PrimitiveRegistry())
-        if (keyword == row.keyword) return &row;
+    // Called for every object of a scene: the keywords' lengths are compared before their
+    // characters, and the table is looked up once.
+    static const std::vector<PrimitiveEntry>& rows = PrimitiveRegistry();
+    static const std::vector<std::string_view> keywords = [] {
+        std::vector<std::string_view> k;
+        for (const PrimitiveEntry& row : rows) k.emplace_back(row.keyword);
+        return k;
+    }();
+    const std::string_view word = keyword;
+    for (size_t i = 0; i < keywords.size(); ++i)
+        if (word == keywords[i]) return &rows[i];
     return nullptr;
 }
 

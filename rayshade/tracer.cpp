@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <unordered_set>
 #include <vector>
 
 #include "libcommon/constants.h"
@@ -105,9 +106,30 @@ void ApplyPathTextures(const Ray& ray, const HitRecord& hit,
     }
 }
 
+// Whether some node at or below `root` carries a surface that lets light through
+// (transp >= kEpsilon, LightThroughShadows' test). Instanced nodes are looked at once.
+bool HasTransparentSurface(const Object& root) {
+    std::unordered_set<const Object*> seen;
+    std::vector<const Object*> pending{&root};
+    while (!pending.empty()) {
+        const Object* node = pending.back();
+        pending.pop_back();
+        if (node->surface && node->surface->transp >= kEpsilon) return true;
+        if (const Aggregate* aggregate = node->aggregate())
+            for (const auto& child : aggregate->Children()) pending.push_back(child.get());
+        if (const Object* target = node->instanceOf(); target && seen.insert(target).second)
+            pending.push_back(target);
+    }
+    return false;
+}
+
 }  // namespace
 
-Tracer::Tracer(const Scene& scene) : scene_(scene), options_(scene.options) {}
+Tracer::Tracer(const Scene& scene)
+    : scene_(scene),
+      options_(scene.options),
+      opaqueShadows_(!options_.shadowTransparency ||
+                     (defaultSurface_.transp < kEpsilon && !HasTransparentSurface(*scene.world))) {}
 
 Color Tracer::TraceEye(const Ray& ray, SampleState& sample, bool& hit) const {
     Count(kEyeRays);
@@ -327,6 +349,13 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
     ray.footprintSpread = std::isfinite(dist) && dist > 0 ? -footprint / dist : 0;
     Color c = light;
     double tMin = kShadowEpsilon;
+    if (opaqueShadows_) {
+        // Every occluder is opaque, so the light is blocked exactly when anything lies on
+        // the segment: the search may stop at the first hit it finds.
+        if (!scene_.world->Occluded(ray, tMin, dist)) return c;
+        Count(kShadowHits);
+        return {};
+    }
     bool previousEntering = false;
     double previousT = 0, previousExtinct = 1;
     // Each pass moves past one transparent occluder; a bound keeps pathological stacks of

@@ -63,6 +63,9 @@ class Tracer {
     const Scene& scene_;
     const RenderOptions& options_;
     Surface defaultSurface_ = Surface::Default();
+    // No occluder can let light through (no transparent surface in the scene, or shadows
+    // through transparent objects are off): shadow rays ask only whether anything is hit.
+    bool opaqueShadows_;
 };
 
 }  // namespace rs

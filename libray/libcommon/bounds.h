@@ -57,6 +57,22 @@ struct Bounds3 {
         tMax = far;
         return true;
     }
+
+    // Whether the segment (tMin, tMax) of `ray` meets the box, given the reciprocal direction
+    // `invDir` (computed once per ray by callers testing many boxes). IEEE infinities handle
+    // axis-parallel directions; NaN (0·∞ on a slab plane) leaves the range alone, so such a
+    // box is admitted.
+    bool MeetsSegment(const Ray& ray, const Vec3& invDir, double tMin, double tMax) const {
+        for (int axis = 0; axis < 3; ++axis) {
+            double t0 = (lo[axis] - ray.origin[axis]) * invDir[axis];
+            double t1 = (hi[axis] - ray.origin[axis]) * invDir[axis];
+            if (t0 > t1) std::swap(t0, t1);
+            if (t0 > tMin) tMin = t0;
+            if (t1 < tMax) tMax = t1;
+            if (tMin > tMax) return false;
+        }
+        return true;
+    }
 };
 
 inline Bounds3 Union(const Bounds3& a, const Bounds3& b) {

@@ -21,6 +21,14 @@ class Aggregate {
     // true; on failure leaves tMax and `hit` untouched.
     virtual bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const = 0;
 
+    // Whether any child has a hit with tMin < t < tMax (the shadow-ray question); the same
+    // answer as Intersect's return value. Aggregates that can stop at the first hit found
+    // override it; the default runs the nearest-hit search.
+    virtual bool Occluded(const Ray& ray, double tMin, double tMax) const {
+        HitRecord hit;
+        return Intersect(ray, tMin, tMax, hit);
+    }
+
     // Box around the bounded children (object space) and whether there are any.
     virtual Bounds3 Bounds() const = 0;
     virtual bool IsBounded() const = 0;

@@ -13,15 +13,24 @@ namespace rs {
 
 class BoundingVolumeHierarchy {
   public:
-    // Builds over `boxes` (item i has box boxes[i]); splits at the median centroid of the
-    // widest axis until at most kLeafSize items remain.
-    void Build(const std::vector<Bounds3>& boxes);
+    enum class Split {
+        // At the median centroid of the widest axis, until at most kLeafSize items remain.
+        Median,
+        // Where the surface-area heuristic (binned centroids, all three axes) expects the
+        // fewest box and item tests for rays through the node; a node stays a leaf (of at
+        // most kMaxSahLeaf items) when no split is expected to pay. Below kMaxSahDepth
+        // levels it falls back to median splits, so the depth stays under 64.
+        SurfaceArea,
+    };
+    // Builds over `boxes` (item i has box boxes[i]).
+    void Build(const std::vector<Bounds3>& boxes, Split split = Split::Median);
     bool IsEmpty() const { return nodes_.empty(); }
 
     // Calls visit(i) for every item whose box meets the ray segment (tMin, tMax), nearer
     // subtrees first. visit returns true when it found a hit, and may then have shrunk tMax;
     // later boxes are clipped against the shrunken segment. Returns whether any visit hit.
-    template <class Visit>
+    // With kStopAtFirstHit the walk returns at the first visit that hits (occlusion).
+    template <bool kStopAtFirstHit = false, class Visit>
     bool Traverse(const Ray& ray, double tMin, double& tMax, Visit&& visit) const {
         if (nodes_.empty()) return false;
         const Vec3 invDir{1 / ray.dir.x, 1 / ray.dir.y, 1 / ray.dir.z};
@@ -32,19 +41,26 @@ class BoundingVolumeHierarchy {
         bool found = false;
         while (top > 0) {
             const Node& node = nodes_[stack[--top]];
-            if (!Overlaps(node.box, ray, invDir, tMin, tMax)) continue;
+            if (!node.box.MeetsSegment(ray, invDir, tMin, tMax)) continue;
             if (node.count > 0) {
-                for (int i = 0; i < node.count; ++i)
-                    if (visit(items_[node.first + i])) found = true;
+                for (int i = 0; i < node.count; ++i) {
+                    if (!visit(items_[node.first + i])) continue;
+                    if (kStopAtFirstHit) return true;
+                    found = true;
+                }
                 continue;
             }
             // Push the far child first so the near one is visited next.
             int nearChild = static_cast<int>(&node - nodes_.data()) + 1, farChild = node.right;
             if (negative[node.axis]) std::swap(nearChild, farChild);
             if (top + 2 > 64) {
-                // Deeper than any tree Build makes (it halves the items each level); visit
-                // the rest linearly rather than overflow.
-                for (int item : items_) if (visit(item)) found = true;
+                // Deeper than any tree Build makes (see Split); visit the rest linearly
+                // rather than overflow.
+                for (int item : items_) {
+                    if (!visit(item)) continue;
+                    if (kStopAtFirstHit) return true;
+                    found = true;
+                }
                 return found;
             }
             stack[top++] = farChild;
@@ -67,8 +83,7 @@ class BoundingVolumeHierarchy {
                 for (int i = 0; i < node.count; ++i) visit(items_[node.first + i]);
                 continue;
             }
-            // Build halves the items at each level, so the stack never holds more than
-            // log2(items) + 2 < 64 entries.
+            // The stack never holds more entries than the tree's depth + 1 < 64 (see Split).
             stack[top++] = node.right;
             stack[top++] = static_cast<int>(&node - nodes_.data()) + 1;
         }
@@ -76,6 +91,9 @@ class BoundingVolumeHierarchy {
 
   private:
     static constexpr int kLeafSize = 2;
+    static constexpr int kMaxSahLeaf = 4;
+    // SAH levels; median levels below them add at most log2(items) < 32 more.
+    static constexpr int kMaxSahDepth = 24;
     struct Node {
         Bounds3 box;
         int first = 0, count = 0;  // leaf: items_[first, first + count)
@@ -83,21 +101,15 @@ class BoundingVolumeHierarchy {
         int axis = 0;
     };
 
-    // Slab test of the segment (tMin, tMax) against `box`, with IEEE infinities for
-    // axis-parallel directions; NaN (0·∞ on a slab plane) leaves the range alone.
-    static bool Overlaps(const Bounds3& box, const Ray& ray, const Vec3& invDir, double tMin,
-                         double tMax) {
-        for (int a = 0; a < 3; ++a) {
-            double t0 = (box.lo[a] - ray.origin[a]) * invDir[a];
-            double t1 = (box.hi[a] - ray.origin[a]) * invDir[a];
-            if (t0 > t1) std::swap(t0, t1);
-            if (t0 > tMin) tMin = t0;
-            if (t1 < tMax) tMax = t1;
-            if (tMin > tMax) return false;
-        }
-        return true;
-    }
-    int BuildNode(std::vector<int>& items, int begin, int end, const std::vector<Bounds3>& boxes);
+    int BuildNode(std::vector<int>& items, int begin, int end, const std::vector<Bounds3>& boxes,
+                  Split split, int depth);
+    // The SAH split of items[begin, end) (centroid bounds `centroids`, node box `box`): when
+    // a split pays, partitions the items, sets `axis` and returns the first of the right
+    // part; otherwise returns kSahLeaf, or kSahMedian when there are too many for a leaf.
+    static constexpr int kSahLeaf = -1, kSahMedian = -2;
+    static int SahPartition(std::vector<int>& items, int begin, int end,
+                            const std::vector<Bounds3>& boxes, const Bounds3& box,
+                            const Bounds3& centroids, int& axis);
 
     std::vector<Node> nodes_;
     std::vector<int> items_;

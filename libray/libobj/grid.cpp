@@ -1,6 +1,7 @@
 #include "libobj/grid.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -13,26 +14,35 @@ namespace rs {
 
 namespace {
 
-// Per-ray record of the children already tested, direct-mapped on the child's index. A
-// collision evicts the older entry, so a child is at worst tested again, never skipped.
-// Lives on the caller's stack: no state shared between rendering threads.
-class Mailbox {
-  public:
-    Mailbox() { std::fill(std::begin(slots_), std::end(slots_), kEmpty); }
+// Mailboxes: each rendering thread keeps one stamp per child of every grid (grids take
+// disjoint ranges of slots, see PrepareFrame). A grid's Intersect takes a fresh stamp from the
+// thread's counter and marks a child's slot with it once tested, so each child is tested at
+// most once per call. Nothing is shared between threads, and a stale or cleared mark only
+// causes a repeated test, which cannot change the result (tMax only shrinks), so images do
+// not depend on the marks.
+std::atomic<size_t> gSlotsAllocated{0};
 
-    // Records `id` and returns whether it was already recorded.
-    bool CheckAndMark(uint32_t id) {
-        uint32_t& slot = slots_[id % kSlots];
-        if (slot == id) return true;
-        slot = id;
-        return false;
+struct ThreadMailbox {
+    std::vector<uint32_t> marks;  // one per allocated slot; 0 is never a stamp
+    uint32_t lastStamp = 0;
+
+    // A stamp not yet used on any of this thread's slots; makes room for every slot allocated
+    // so far. Slots are allocated only by PrepareFrame, which never runs during a walk, so
+    // the calls of nested walks find the room made and never move `marks`.
+    uint32_t NewStamp() {
+        const size_t slots = gSlotsAllocated.load(std::memory_order_relaxed);
+        if (marks.size() < slots) marks.resize(slots, 0);
+        if (++lastStamp == 0) {  // wrapped after 2^32 calls: forget every mark
+            std::fill(marks.begin(), marks.end(), 0);
+            lastStamp = 1;
+        }
+        return lastStamp;
     }
-
-  private:
-    static constexpr uint32_t kEmpty = std::numeric_limits<uint32_t>::max();
-    static constexpr int kSlots = 64;
-    uint32_t slots_[kSlots];
 };
+
+thread_local ThreadMailbox tMailbox;
+
+const CounterId kBoundsTests = RegisterCounter("bounding box tests");
 
 }  // namespace
 
@@ -48,6 +58,7 @@ int GridAggregate::VoxelOf(double x, int axis) const {
 void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     bounded_.clear();
     unbounded_.clear();
+    childBoxes_.clear();
     cellStart_.clear();
     cellItems_.clear();
     bounds_ = Bounds3{};
@@ -60,39 +71,40 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
         }
     }
     if (bounded_.empty()) return;
+    if (bounded_.size() > slotCount_) {
+        slotCount_ = bounded_.size();
+        firstSlot_ = gSlotsAllocated.fetch_add(slotCount_, std::memory_order_relaxed);
+    }
+    // The children's boxes padded by kEpsilon: the registered boxes (a hit on a voxel face
+    // stays registered on both sides despite round-off in the DDA, and flat boxes, e.g. of
+    // polygons, get a non-zero extent) and the boxes the walk tests, so a hit a rounding
+    // error outside a flat child's box is never rejected.
+    childBoxes_.reserve(bounded_.size());
+    for (const Object* child : bounded_) childBoxes_.push_back(child->BoundsInParent().Padded(kEpsilon));
 
-    // Padding the grid and every registered box by kEpsilon keeps a hit on a voxel face
-    // registered on both sides despite round-off in the DDA, and gives flat boxes
-    // (polygons) a non-zero extent.
     gridBox_ = bounds_.Padded(kEpsilon);
     const Vec3 extent = gridBox_.Extent();
     voxelSize_ = {extent.x / n_[0], extent.y / n_[1], extent.z / n_[2]};
 
-    // Two passes: count the entries of each cell, then fill them in.
-    const size_t cellCount = static_cast<size_t>(n_[0]) * n_[1] * n_[2];
-    cellStart_.assign(cellCount + 1, 0);
-    auto forEachCell = [&](const Bounds3& box, auto&& visit) {
-        if (box.IsEmpty()) return;
-        const Bounds3 padded = box.Padded(kEpsilon);
-        int lo[3], hi[3];
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = VoxelOf(padded.lo[a], a);
-            hi[a] = VoxelOf(padded.hi[a], a);
-        }
-        for (int z = lo[2]; z <= hi[2]; ++z)
-            for (int y = lo[1]; y <= hi[1]; ++y)
-                for (int x = lo[0]; x <= hi[0]; ++x) visit(CellIndex(x, y, z));
-    };
-    // The entry count first, from each box's voxel range, so a grid too fine for its
-    // children is refused before any entry is stored or visited.
+    // Each child's voxel range, computed once: lo[3], hi[3] (hi < lo for an empty box).
+    std::vector<int> ranges(6 * bounded_.size());
+    // The entry count first, so a grid too fine for its children is refused before any
+    // entry is stored or visited.
     uint64_t entries = 0;
-    for (const Object* child : bounded_) {
-        const Bounds3 box = child->BoundsInParent();
-        if (box.IsEmpty()) continue;
-        const Bounds3 padded = box.Padded(kEpsilon);
+    for (size_t i = 0; i < bounded_.size(); ++i) {
+        const Bounds3& box = childBoxes_[i];
+        int* r = &ranges[6 * i];
+        if (box.IsEmpty()) {
+            std::fill(r, r + 6, 0);
+            r[3] = -1;
+            continue;
+        }
         uint64_t cells = 1;
-        for (int a = 0; a < 3; ++a)
-            cells *= static_cast<uint64_t>(VoxelOf(padded.hi[a], a) - VoxelOf(padded.lo[a], a) + 1);
+        for (int a = 0; a < 3; ++a) {
+            r[a] = VoxelOf(box.lo[a], a);
+            r[3 + a] = VoxelOf(box.hi[a], a);
+            cells *= static_cast<uint64_t>(r[3 + a] - r[a] + 1);
+        }
         entries += cells;
     }
     if (entries > static_cast<uint64_t>(Limits().gridEntries)) {
@@ -102,14 +114,21 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
                n_[0], n_[1], n_[2], bounded_.size(), static_cast<unsigned long long>(entries),
                static_cast<unsigned long long>(Limits().gridEntries));
     }
-    for (const Object* child : bounded_) {
-        forEachCell(child->BoundsInParent(), [&](int c) { ++cellStart_[c + 1]; });
-    }
+    const auto forEachCell = [&](size_t i, auto&& visit) {
+        const int* r = &ranges[6 * i];
+        for (int z = r[2]; z <= r[5]; ++z)
+            for (int y = r[1]; y <= r[4]; ++y)
+                for (int x = r[0]; x <= r[3]; ++x) visit(CellIndex(x, y, z));
+    };
+    // Two passes: count the entries of each cell, then fill them in.
+    const size_t cellCount = static_cast<size_t>(n_[0]) * n_[1] * n_[2];
+    cellStart_.assign(cellCount + 1, 0);
+    for (size_t i = 0; i < bounded_.size(); ++i) forEachCell(i, [&](int c) { ++cellStart_[c + 1]; });
     for (size_t c = 0; c < cellCount; ++c) cellStart_[c + 1] += cellStart_[c];
     cellItems_.resize(cellStart_[cellCount]);
     std::vector<uint32_t> cursor(cellStart_.begin(), cellStart_.end() - 1);
     for (uint32_t i = 0; i < bounded_.size(); ++i) {
-        forEachCell(bounded_[i]->BoundsInParent(), [&](int c) { cellItems_[cursor[c]++] = i; });
+        forEachCell(i, [&](int c) { cellItems_[cursor[c]++] = i; });
     }
 }
 
@@ -118,10 +137,25 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
     for (const Object* child : unbounded_) {
         if (child->Intersect(ray, tMin, tMax, hit)) found = true;
     }
-    if (bounded_.empty()) return found;
+    return Walk<false>(ray, tMin, tMax, [&](const Object* child) {
+               return child->Intersect(ray, tMin, tMax, hit);
+           }) ||
+           found;
+}
 
+bool GridAggregate::Occluded(const Ray& ray, double tMin, double tMax) const {
+    for (const Object* child : unbounded_) {
+        if (child->Occluded(ray, tMin, tMax)) return true;
+    }
+    return Walk<true>(ray, tMin, tMax,
+                      [&](const Object* child) { return child->Occluded(ray, tMin, tMax); });
+}
+
+template <bool kStopAtFirstHit, class Test>
+bool GridAggregate::Walk(const Ray& ray, double tMin, double& tMax, Test&& test) const {
+    if (bounded_.empty()) return false;
     double tEnter = tMin, tExit = tMax;
-    if (!gridBox_.ClipRay(ray, tEnter, tExit)) return found;
+    if (!gridBox_.ClipRay(ray, tEnter, tExit)) return false;
 
     // 3-D DDA (Amanatides & Woo): tNext[a] is the t at which the ray leaves the current
     // cell through a face normal to axis a, tDelta[a] the t it takes to cross one cell.
@@ -149,13 +183,30 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
         }
     }
 
-    Mailbox tested;
+    // The children's box tests share the reciprocal direction.
+    const Vec3 invDir{1 / ray.dir.x, 1 / ray.dir.y, 1 / ray.dir.z};
+    bool found = false;
+    ThreadMailbox& mailbox = tMailbox;
+    const uint32_t stamp = mailbox.NewStamp();
+    uint32_t* const marks = mailbox.marks.data() + firstSlot_;  // stays put, see NewStamp
+    uint64_t boxTests = 0;
     for (;;) {
         const int c = CellIndex(cell[0], cell[1], cell[2]);
         for (uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
             const uint32_t id = cellItems_[k];
-            if (tested.CheckAndMark(id)) continue;
-            if (bounded_[id]->Intersect(ray, tMin, tMax, hit)) found = true;
+            uint32_t& mark = marks[id];
+            if (mark == stamp) continue;
+            mark = stamp;
+            // A child whose box the remaining segment misses cannot be hit later either
+            // (the segment only shrinks), so marking it tested is exact.
+            ++boxTests;
+            if (!childBoxes_[id].MeetsSegment(ray, invDir, tMin, tMax)) continue;
+            if (!test(bounded_[id])) continue;
+            found = true;
+            if (kStopAtFirstHit) {
+                Count(kBoundsTests, boxTests);
+                return true;
+            }
         }
         int axis = tNext[0] < tNext[1] ? 0 : 1;
         if (tNext[2] < tNext[axis]) axis = 2;
@@ -166,6 +217,7 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
         if (cell[axis] == stop[axis]) break;
         tNext[axis] += tDelta[axis];
     }
+    Count(kBoundsTests, boxTests);
     return found;
 }
 

@@ -22,11 +22,13 @@ class GridAggregate final : public Aggregate {
     const char* TypeName() const override { return "grid"; }
 
     // Unbounded children are tested first, then the voxels the segment (tMin, tMax) crosses,
-    // front to back, until the nearest hit so far lies within the current voxel. A child
-    // registered in several voxels is tested once per ray, up to collisions in a small
-    // per-ray table (a repeated test is harmless: tMax only shrinks). Thread-safe.
+    // front to back, until the nearest hit so far lies within the current voxel. Each bounded
+    // child is considered at most once per call (per-thread mailboxes) and tested only when
+    // the remaining segment meets its box. Thread-safe.
     // Requires PrepareFrame to have run.
     bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const override;
+    // The same walk, returning at the first hit.
+    bool Occluded(const Ray& ray, double tMin, double tMax) const override;
 
     // The box of the bounded children (object space) and whether there are any.
     Bounds3 Bounds() const override { return bounds_; }
@@ -38,6 +40,11 @@ class GridAggregate final : public Aggregate {
     void PrepareFrame(double frameTime, double shutter) override;
 
   private:
+    // The voxel walk over the bounded children: test(child) searches one child (it may shrink
+    // tMax through the caller's state, which the walk reads back) and returns whether it hit.
+    // Returns whether any test hit; with kStopAtFirstHit returns at the first.
+    template <bool kStopAtFirstHit, class Test>
+    bool Walk(const Ray& ray, double tMin, double& tMax, Test&& test) const;
     // The voxel index along `axis` holding coordinate x (clamped to the grid).
     int VoxelOf(double x, int axis) const;
     int CellIndex(int ix, int iy, int iz) const { return (iz * n_[1] + iy) * n_[0] + ix; }
@@ -48,6 +55,9 @@ class GridAggregate final : public Aggregate {
     Vec3 voxelSize_;
     std::vector<const Object*> bounded_;
     std::vector<const Object*> unbounded_;
+    std::vector<Bounds3> childBoxes_;  // bounded_[i]'s box padded by kEpsilon
+    // This grid's mailbox slots: firstSlot_ + i is bounded_[i]'s (see grid.cpp).
+    size_t firstSlot_ = 0, slotCount_ = 0;
     // Compressed rows: cell c holds bounded_[cellItems_[k]] for cellStart_[c] <= k <
     // cellStart_[c + 1].
     std::vector<uint32_t> cellStart_;

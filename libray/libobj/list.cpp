@@ -25,6 +25,20 @@ bool ListAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
     return found;
 }
 
+bool ListAggregate::Occluded(const Ray& ray, double tMin, double tMax) const {
+    for (const Object* child : unbounded_)
+        if (child->Occluded(ray, tMin, tMax)) return true;
+    if (!hasBounded_) return false;
+    if (!hierarchy_.IsEmpty()) {
+        return hierarchy_.Traverse<true>(ray, tMin, tMax, [&](int i) {
+            return bounded_[i]->Occluded(ray, tMin, tMax);
+        });
+    }
+    for (const Object* child : bounded_)
+        if (child->Occluded(ray, tMin, tMax)) return true;
+    return false;
+}
+
 void ListAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     bounds_ = Bounds3{};
     unbounded_.clear();
@@ -42,7 +56,7 @@ void ListAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     }
     hasBounded_ = !bounded_.empty();
     if (bounded_.size() > kHierarchyThreshold)
-        hierarchy_.Build(boxes);
+        hierarchy_.Build(boxes, BoundingVolumeHierarchy::Split::SurfaceArea);
     else
         hierarchy_ = BoundingVolumeHierarchy{};
 }

@@ -47,10 +47,21 @@ bool Object::IntersectGeneral(const Ray& rayParent, double tMin, double& tMax,
         if (found && hit.pathLength < HitRecord::kMaxPath) hit.path[hit.pathLength++] = this;
         return found;
     };
-    if (parentFromObject.IsIdentity()) return inObjectSpace(rayParent);
-    return inObjectSpace(parentFromObject.IsAnimated()
-                             ? parentFromObject.At(rayParent.time).InverseRay(rayParent)
-                             : parentFromObject.Static().InverseRay(rayParent));
+    Ray storage;
+    return inObjectSpace(ObjectRay(rayParent, storage));
+}
+
+bool Object::OccludedGeneral(const Ray& rayParent, double tMin, double tMax) const {
+    Ray storage;
+    const Ray& ray = ObjectRay(rayParent, storage);
+    switch (kind_) {
+        case Kind::Primitive: return OccludedPrimitive(ray, tMin, tMax);
+        case Kind::Aggregate:
+            return BoxAdmits(ray, tMin, tMax) && aggregate_->Occluded(ray, tMin, tMax);
+        case Kind::Instance:
+            return BoxAdmits(ray, tMin, tMax) && instanceOf_->Occluded(ray, tMin, tMax);
+    }
+    return false;
 }
 
 bool Object::IsClosed() const {

@@ -49,6 +49,15 @@ class Object {
         return IntersectGeneral(rayParent, tMin, tMax, hit);
     }
 
+    // Whether anything below this node has a hit with tMin < t < tMax, for a ray in the
+    // PARENT's space: the same answer as Intersect's return value, but a search may stop at
+    // the first hit it finds (shadow rays through opaque scenes).
+    bool Occluded(const Ray& rayParent, double tMin, double tMax) const {
+        if (kind_ == Kind::Primitive && parentFromObject.IsIdentity())
+            return OccludedPrimitive(rayParent, tMin, tMax);
+        return OccludedGeneral(rayParent, tMin, tMax);
+    }
+
     // Bounds in the parent's space for the current frame (union over the shutter interval
     // when animated) and whether the node is bounded at all (planes are not).
     const Bounds3& BoundsInParent() const { return boundsInParent_; }
@@ -93,6 +102,23 @@ class Object {
         return true;
     }
     bool IntersectGeneral(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const;
+    bool OccludedPrimitive(const Ray& ray, double tMin, double tMax) const {
+        Count(counters_->tests);
+        PrimitiveHit ph;
+        if (!primitive_->Intersect(ray, tMin, tMax, ph)) return false;
+        Count(counters_->hits);
+        return true;
+    }
+    bool OccludedGeneral(const Ray& rayParent, double tMin, double tMax) const;
+    // The ray in this node's object space: rayParent itself without a transform, else
+    // mapped into `storage`.
+    const Ray& ObjectRay(const Ray& rayParent, Ray& storage) const {
+        if (parentFromObject.IsIdentity()) return rayParent;
+        storage = parentFromObject.IsAnimated()
+                      ? parentFromObject.At(rayParent.time).InverseRay(rayParent)
+                      : parentFromObject.Static().InverseRay(rayParent);
+        return storage;
+    }
 
     static const CounterId kBoundsTests;
 

@@ -7,6 +7,8 @@
 #include "libcommon/stats.h"
 #include "libobj/list.h"
 #include "libobj/object.h"
+#include "libobj/sphere.h"
+#include "libobj/triangle.h"
 #include "test_shapes.h"
 
 namespace rs {
@@ -152,12 +154,95 @@ TEST(GridAggregate, StopsOnceTheHitLiesInTheCurrentVoxel) {
     ASSERT_TRUE(grid->Intersect({{-5, 0, 0}, {1, 0, 0}}, kEpsilon, tMax, hit));
     EXPECT_DOUBLE_EQ(hit.t(), 4.7);
     EXPECT_EQ(CounterTotal("LatticeSphere tests"), 1u);
-    // At y = z = 0.5 the ray misses every sphere (0.5·√2 > 0.3) and crosses the ten voxels
-    // (i, 0, 0), which hold one sphere each: ten tests.
+    // At y = z = 0.25 the ray misses every sphere (0.25·√2 > 0.3) but meets the boxes of
+    // the ten spheres (i, 0, 0), one per voxel it crosses: ten tests.
+    ResetStats();
+    tMax = kFar;
+    EXPECT_FALSE(grid->Intersect({{-5, 0.25, 0.25}, {1, 0, 0}}, kEpsilon, tMax, hit));
+    EXPECT_EQ(CounterTotal("LatticeSphere tests"), 10u);
+    // At y = z = 0.5 the same voxels are crossed, but the ray misses every sphere's box.
     ResetStats();
     tMax = kFar;
     EXPECT_FALSE(grid->Intersect({{-5, 0.5, 0.5}, {1, 0, 0}}, kEpsilon, tMax, hit));
-    EXPECT_EQ(CounterTotal("LatticeSphere tests"), 10u);
+    EXPECT_EQ(CounterTotal("LatticeSphere tests"), 0u);
+}
+
+// Many small objects (flat triangles, some in axis planes, and spheres) spanning a few voxels
+// each, in fine grids, against a brute-force loop over every child: the mailboxes and the
+// per-child box rejection must never lose or change a hit, and no child may be tested
+// twice by one call.
+TEST(GridAggregate, MailboxesAndBoxRejectionKeepEveryHit) {
+    for (uint64_t seed = 1; seed <= 12; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        Rng rng(seed);
+        std::vector<std::shared_ptr<Object>> children;
+        const int count = 200 + static_cast<int>(rng.Uniform() * 800);
+        for (int i = 0; i < count; ++i) {
+            const Vec3 c = RandomPoint(rng, -3, 3);
+            const double size = rng.Uniform() < 0.05 ? Uniform(rng, 1, 3) : Uniform(rng, 0.05, 0.4);
+            if (i % 3 == 0) {
+                children.push_back(Object::MakePrimitive(
+                    std::make_shared<Sphere>(size * 0.5, c)));
+                continue;
+            }
+            Triangle::Points p{c + RandomPoint(rng, -size, size), c + RandomPoint(rng, -size, size),
+                               c + RandomPoint(rng, -size, size)};
+            if (i % 4 == 1) {  // in the plane z = c.z: a flat box
+                for (Vec3& v : p) v.z = c.z;
+            }
+            if (Triangle::IsDegenerate(p)) continue;
+            children.push_back(Object::MakePrimitive(std::make_shared<Triangle>(p, false)));
+        }
+        const int n = 4 + static_cast<int>(rng.Uniform() * 28);
+        auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 3, n / 2 + 1), children);
+        int hits = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const Vec3 origin = RandomPoint(rng, -5, 5);
+            Vec3 dir = RandomDirection(rng);
+            if (i % 2 == 0) {
+                const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
+                dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -0.1, 0.1) - origin);
+            }
+            const Ray ray{origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+            const double tMin = rng.Uniform() < 0.2 ? Uniform(rng, 0, 3) : kEpsilon;
+            double tBrute = kFar, tGrid = kFar;
+            HitRecord hBrute, hGrid;
+            bool fBrute = false;
+            for (const auto& child : children)
+                if (child->Intersect(ray, tMin, tBrute, hBrute)) fBrute = true;
+            const uint64_t testsBefore = CounterTotal("Triangle tests") + CounterTotal("Sphere tests");
+            const bool fGrid = grid->Intersect(ray, tMin, tGrid, hGrid);
+            const uint64_t tests =
+                CounterTotal("Triangle tests") + CounterTotal("Sphere tests") - testsBefore;
+            ASSERT_LE(tests, children.size()) << "ray " << i;
+            ASSERT_EQ(fBrute, fGrid) << "ray " << i;
+            if (!fBrute) continue;
+            ++hits;
+            ASSERT_EQ(tBrute, tGrid) << "ray " << i;
+            ASSERT_EQ(hBrute.primitive, hGrid.primitive) << "ray " << i;
+        }
+        EXPECT_GT(hits, 500);
+    }
+}
+
+// Each call tests a child at most once, however many voxels hold it, also when grids nest
+// (the inner grid's calls take stamps of their own while the outer call is under way).
+TEST(GridAggregate, NestedGridsTestEachChildOncePerCall) {
+    auto wide = Object::MakePrimitive(
+        std::make_shared<TestSphere>(Vec3{0, 0, 0}, 4, "WideSphere"));
+    auto inner = Wrap(std::make_shared<GridAggregate>(6, 6, 6),
+                      {wide, Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{3, 3, 3}, 1))});
+    auto outer = Wrap(std::make_shared<GridAggregate>(7, 7, 7),
+                      {inner, Object::MakePrimitive(
+                                  std::make_shared<TestSphere>(Vec3{-4, -4, -4}, 1, "CornerSphere"))});
+    for (int i = 0; i < 3; ++i) {
+        ResetStats();
+        HitRecord hit;
+        double tMax = kFar;
+        // Along x at y = 3.5, z = −3.5: inside the outer and inner boxes, clear of every sphere.
+        EXPECT_FALSE(outer->Intersect({{-6, 3.5, -3.5}, {1, 0, 0}}, kEpsilon, tMax, hit));
+        EXPECT_EQ(CounterTotal("WideSphere tests"), 1u);
+    }
 }
 
 TEST(GridAggregate, UnboundedChildrenAreTestedSeparately) {

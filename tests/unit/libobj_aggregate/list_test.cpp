@@ -1,8 +1,12 @@
 #include "libobj/list.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "libcommon/constants.h"
+#include "libcommon/random.h"
+#include "libcommon/stats.h"
 #include "libobj/object.h"
 #include "test_shapes.h"
 
@@ -23,6 +27,50 @@ std::shared_ptr<Object> MakeList(std::vector<std::shared_ptr<Object>> children) 
     auto node = Object::MakeAggregate(list);
     node->PrepareFrame(0, 0);
     return node;
+}
+
+// The list's surface-area hierarchy against a brute-force loop over the children, on clouds
+// of spheres of very different sizes and on a geometric series of nested positions (which
+// makes the heuristic cut off one item at a time, down to its depth limit).
+TEST(ListAggregate, HierarchyFindsTheNearestHitOfEveryChild) {
+    for (uint64_t seed = 1; seed <= 8; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        Rng rng(seed);
+        const auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * rng.Uniform(); };
+        std::vector<std::shared_ptr<Object>> children;
+        const int count = 50 + static_cast<int>(rng.Uniform() * 1500);
+        for (int i = 0; i < count; ++i) {
+            if (seed % 2 == 0) {  // x = 2^-i: ever closer to the origin, ever smaller
+                const double x = std::ldexp(1.0, -(i % 60));
+                children.push_back(Sphere({x, uniform(-0.1, 0.1), 0}, x * 0.3));
+            } else {
+                const double r = rng.Uniform() < 0.05 ? uniform(1, 3) : uniform(0.01, 0.3);
+                children.push_back(Sphere({uniform(-5, 5), uniform(-5, 5), uniform(-1, 1)}, r));
+            }
+        }
+        auto list = MakeList(children);
+        int hits = 0;
+        for (int i = 0; i < 1000; ++i) {
+            const Vec3 origin{uniform(-6, 6), uniform(-6, 6), uniform(-6, 6)};
+            const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
+            Vec3 aim = target->BoundsInParent().Center();
+            aim += Vec3{uniform(-0.2, 0.2), uniform(-0.2, 0.2), uniform(-0.2, 0.2)} *
+                   (i % 3 == 0 ? 10.0 : 1.0);
+            const Ray ray{origin, Normalize(aim - origin), 0};
+            double tBrute = kFar, tList = kFar;
+            HitRecord hBrute, hList;
+            bool fBrute = false;
+            for (const auto& child : children)
+                if (child->Intersect(ray, kEpsilon, tBrute, hBrute)) fBrute = true;
+            ASSERT_EQ(list->Intersect(ray, kEpsilon, tList, hList), fBrute) << "ray " << i;
+            ASSERT_EQ(list->Occluded(ray, kEpsilon, kFar), fBrute) << "ray " << i;
+            if (!fBrute) continue;
+            ++hits;
+            ASSERT_EQ(tList, tBrute) << "ray " << i;
+            ASSERT_EQ(hList.primitive, hBrute.primitive) << "ray " << i;
+        }
+        EXPECT_GT(hits, 100);
+    }
 }
 
 TEST(ListAggregate, KeepsNearestHitWhateverTheOrder) {

@@ -11,7 +11,7 @@ class FakeParser final : public ParserServices {
     explicit FakeParser(const std::string& text) : tokens_(text, "a.ray") {}
     TokenStream& Tokens() override { return tokens_; }
     const SymbolTable& Symbols() const override { return symbols_; }
-    Surface ParseSurfaceValue(const std::string&) override {
+    Surface ParseSurfaceValue(std::string_view) override {
         tokens_.Next();
         Surface s;
         s.specpow = 42;

@@ -106,6 +106,32 @@ TEST(Tracer, TransparentOccluderFiltersShadowLight) {
     ExpectColor(c, expectedLight * 0.5, 1e-6);
 }
 
+// Shadow rays of scenes without transparent surfaces only ask whether anything is hit; a
+// transparent surface anywhere, here on an instance inside a nested list, keeps them
+// accumulating through occluders, and with transparent shadows off it blocks like any other.
+TEST(Tracer, TransparentSurfaceBelowAnInstanceStillFiltersShadowLight) {
+    Surface filter = Matte(0, 0);
+    filter.transp = 0.5;
+    filter.body = Color(1, 0.5, 0.25);
+    for (bool transparentShadows : {true, false}) {
+        TestScene t;
+        t.scene.options.shadowTransparency = transparentShadows;
+        t.AddSphere(1, {0, 0, 0}, Matte(0, 0.5));
+        auto inner = std::make_shared<ListAggregate>();
+        inner->AddChild(Object::MakePrimitive(std::make_shared<Sphere>(0.2, Vec3{0, 0, 3})));
+        auto instance = Object::MakeInstance(Object::MakeAggregate(inner));
+        instance->surface = std::make_shared<Surface>(filter);
+        auto outer = std::make_shared<ListAggregate>();
+        outer->AddChild(instance);
+        t.list->AddChild(Object::MakeAggregate(outer));
+        bool hit = false;
+        Vec3 top{0, 0, 1};
+        Color c = t.Trace({top + Vec3{3, 0, 0.5}, Normalize(Vec3{-3, 0, -0.5}), 0}, hit);
+        Color expected = transparentShadows ? Color(0.25) * Color(1, 0.25, 0.0625) * 0.5 : Color(0);
+        ExpectColor(c, expected, 1e-6);
+    }
+}
+
 TEST(Tracer, MirrorReflectsTheBackgroundTintedBySpecular) {
     TestScene t;
     Surface mirror = Matte(0, 0);
