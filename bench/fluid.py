@@ -7,8 +7,8 @@ each point with Gascuel's linear kernel `field linear 0.45 2 1` (thickness 0.45,
 radius 1, threshold 1), the kit's camera, lights and ground plane. Each is rendered by
 rayshade at 512x512, `-S 1` (one sample per pixel), with the scene's default method and
 `-t THREADS`. Printed per N: wall time, CPU time (user + system of that process alone)
-split into the lazy octree builds (the object's "preprocessing time" counter: build CPU
-summed over threads; see the note printed) and the rest (parsing, search, shading), implicit evaluations per ray
+split into the patches, hierarchy and lazy octree builds (the object's "preprocessing
+time" counter: build CPU time summed over threads) and the rest (parsing, search, shading), implicit evaluations per ray
 (field + gradient + bound, over every eye and shadow ray, builds excluded), octree cells
 built and kept, octree memory and the process's peak resident memory. Then a sample of eye
 rays through random pixels is answered by rayquery with the default method and with

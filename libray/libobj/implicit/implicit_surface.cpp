@@ -1,11 +1,11 @@
 #include "libobj/implicit/implicit_surface.h"
 
-#include <chrono>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "libcommon/cpu_clock.h"
 #include "libobj/implicit/implicit_block.h"
 #include "libobj/implicit/implicit_syntax.h"
 #include "libobj/implicit/method_registry.h"
@@ -75,7 +75,7 @@ std::string ImplicitSurface::PatchName(const PrimitiveHit& hit) const {
 // Makes the method (patches and their BVH, or a baseline; octrees are built lazily by
 // their methods) and counts the time under this object's label.
 void ImplicitSurface::Build() {
-    const auto start = std::chrono::steady_clock::now();
+    const uint64_t cpuStart = ThreadCpuMicroseconds();
     method_.reset();
     const std::vector<FieldTerm>& terms = Terms();
     partOfTerm_.assign(terms.size(), -1);
@@ -87,9 +87,7 @@ void ImplicitSurface::Build() {
     }
     method_ = MethodEntryOf(options_.method).create(whole_, options_, stats_);
     bounds_ = method_->Bounds(whole_);
-    const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
-        std::chrono::steady_clock::now() - start);
-    stats_.CountPreprocessing(static_cast<uint64_t>(micros.count()));
+    stats_.CountPreprocessing(ThreadCpuMicroseconds() - cpuStart);
 }
 
 void ImplicitSurface::PrepareFrame(double frameTime) {

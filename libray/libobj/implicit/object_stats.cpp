@@ -86,16 +86,14 @@ ImplicitObjectStats::BuildSnapshot ImplicitObjectStats::TakeBuildSnapshot() cons
     BuildSnapshot s;
     s.counts.resize(sources.size());
     for (size_t k = 0; k < sources.size(); ++k) s.counts[k] = ThreadCount(sources[k].first);
-    s.start = std::chrono::steady_clock::now();
+    s.cpuStart = ThreadCpuMicroseconds();
     return s;
 }
 
 // Attributes a build to this object by differences of the building thread's own counters
 // (other threads may be counting at the same time).
 void ImplicitObjectStats::AttributeBuild(const BuildSnapshot& before, const LGOctree& tree) const {
-    const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
-        std::chrono::steady_clock::now() - before.start);
-    Count(buildMicroseconds_, static_cast<uint64_t>(micros.count()));
+    Count(buildMicroseconds_, ThreadCpuMicroseconds() - before.cpuStart);
     CountTree(tree);
     const std::vector<std::pair<CounterId, std::string>>& sources = BuildCounterSources();
     const FieldCounters& field = FieldCounterIds();

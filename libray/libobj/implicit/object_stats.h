@@ -12,12 +12,12 @@
 #pragma once
 
 #include <atomic>
-#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "libcommon/cpu_clock.h"
 #include "libcommon/stats.h"
 #include "libobj/implicit/lg_octree.h"
 
@@ -63,7 +63,7 @@ class ImplicitObjectStats {
   private:
     struct BuildSnapshot {
         std::vector<uint64_t> counts;  // the module's build counters, this thread
-        std::chrono::steady_clock::time_point start;
+        uint64_t cpuStart = 0;  // ThreadCpuMicroseconds() when taken
     };
     struct RaySnapshot {
         uint64_t values, gradients, bounds, iterations;  // this thread's counters
