@@ -3,18 +3,18 @@
 
 The scenes are the shared POV-Ray kit's snake chains scaled up (bench/implicit.py's walk:
 points 0.6 apart, seed 1000 + N, confining cube sized so the chain's tube fills 5 % of it),
-each point with Gascuel's linear kernel `field linear 0.45 2 1` (thickness 0.45, stiffness 2,
-radius 1, threshold 1), the kit's camera, lights and ground plane. Each is rendered by
-rayshade at 512x512, `-S 1` (one sample per pixel), with the scene's default method and
-`-t THREADS`. Printed per N: wall time, CPU time (user + system of that process alone)
-split into the patches, hierarchy and lazy octree builds (the object's "preprocessing
-time" counter: build CPU time summed over threads) and the rest (parsing, search, shading), implicit evaluations per ray
-(field + gradient + bound, over every eye and shadow ray, builds excluded), octree cells
-built and kept, octree memory and the process's peak resident memory. Then a sample of eye
-rays through random pixels is answered by rayquery with the default method and with
-`-m exact` (the long-double ground truth): misses (exact hits, default does not), false hits
-and the largest depth error, against the tolerance (rays without a footprint use the fixed
-1e-7).
+each point with Gascuel's linear kernel `field linear 0.45 2 1` (thickness 0.45, stiffness
+2, radius 1, threshold 1), the kit's camera, lights and ground plane. Each is rendered by
+rayshade at 512x512, `-S 1` (one sample per pixel), with the scene's default method and `-t
+THREADS`. Printed per N: wall time, CPU time (user + system of that process alone) split
+into the patches, hierarchy and lazy octree builds (the object's "preprocessing time"
+counter: build CPU time summed over threads) and the rest (parsing, search, shading),
+implicit evaluations per ray (field + gradient + bound, over every eye and shadow ray,
+builds excluded), octree cells built and kept, octree memory and the process's peak resident
+memory. Then a sample of eye rays through random pixels is answered by rayquery with the
+default method and with `-m exact` (the long-double ground truth): misses (exact hits,
+default does not), false hits and the largest depth error, against the tolerance (rays
+without a footprint use the fixed 1e-7).
 
 With --blob the same table follows for the blob kernel (s = 1, R = 1, threshold 0.6, the
 shared chains' field, on the kit's own chains where it has them) under `method patches`,
