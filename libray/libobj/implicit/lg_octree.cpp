@@ -8,47 +8,22 @@
 
 #include "libcommon/error.h"
 #include "libcommon/stats.h"
-#include "libobj/implicit/root_finding.h"
+#include "libobj/implicit/lg_octree_detail.h"
 
 namespace rs {
 
-namespace {
+using lg_octree_detail::ChildBox;
+using lg_octree_detail::Counters;
+using lg_octree_detail::OctreeCounters;
 
-struct OctreeCounters {
-    CounterId cellsBuilt = RegisterCounter("Implicit octree cells built");
-    CounterId rangeFired = RegisterCounter("Implicit octree value-range prunes");
-    CounterId patchFired = RegisterCounter("Implicit octree patch-rule prunes");
-    CounterId h1Fired = RegisterCounter("Implicit octree heuristic 1 prunes");
-    CounterId h1bisFired = RegisterCounter("Implicit octree heuristic 1bis prunes");
-    CounterId h2Fired = RegisterCounter("Implicit octree heuristic 2 leaves");
-    CounterId h3Fired = RegisterCounter("Implicit octree heuristic 3 leaves");
-    CounterId h3bisFired = RegisterCounter("Implicit octree heuristic 3bis leaves");
-    CounterId budgetFired = RegisterCounter("Implicit octree memory-budget leaves");
-    CounterId h4Fired = RegisterCounter("Implicit octree heuristic 4 merges");
-    CounterId h5Fired = RegisterCounter("Implicit octree heuristic 5 merges");
-    CounterId cellsVisited = RegisterCounter("Implicit cells visited");
-    CounterId test0bis = RegisterCounter("Implicit test 0bis roots");
-    CounterId test1 = RegisterCounter("Implicit test 1 (L) rejections");
-    CounterId test2bisChord = RegisterCounter("Implicit test 2bis chord rejections");
-    CounterId monotoneNoRoot = RegisterCounter("Implicit monotone same-sign rejections");
-    CounterId test3 = RegisterCounter("Implicit test 3 single-root intervals");
-    CounterId splits = RegisterCounter("Implicit interval splits");
-    CounterId segmentBounds = RegisterCounter("Implicit segment bounds");
-    CounterId ridders = RegisterCounter("Implicit Ridders calls");
-    CounterId riddersIterations = RegisterCounter("Implicit Ridders iterations");
-    CounterId floorRoots = RegisterCounter("Implicit minimum-width roots");
-    CounterId unresolved = RegisterCounter("Implicit unresolved intervals");
-    CounterId rejectedRoots = RegisterCounter("Implicit roots rejected by predominance");
-    CounterId excludedSegments =
-        RegisterCounter("Implicit single-root segments excluded by predominance");
-};
+namespace lg_octree_detail {
 
 const OctreeCounters& Counters() {
     static const OctreeCounters counters;
     return counters;
 }
 
-}  // namespace
+}  // namespace lg_octree_detail
 
 CounterId RiddersIterationCounter() { return Counters().riddersIterations; }
 
@@ -81,216 +56,6 @@ std::vector<CounterId> OctreeCounterIds() {
                                c.excludedSegments};
 }
 
-namespace {
-
-bool Inside(double g) { return g > 0; }
-
-Bounds3 ChildBox(const Bounds3& box, int i) {
-    Vec3 c = box.Center();
-    Bounds3 b;
-    b.lo = {(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y, (i & 4) ? c.z : box.lo.z};
-    b.hi = {(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y, (i & 4) ? box.hi.z : c.z};
-    return b;
-}
-
-int ChildIndexOf(const Bounds3& box, const Vec3& p) {
-    Vec3 c = box.Center();
-    return (p.x >= c.x ? 1 : 0) | (p.y >= c.y ? 2 : 0) | (p.z >= c.z ? 4 : 0);
-}
-
-// The recursive per-leaf search of one ray (see the header for the tests).
-class RaySearch {
-  public:
-    RaySearch(const LGOctree& tree, const Ray& ray, double tMin, double tMax,
-              const LGOctree::RootFilter& accept)
-        : tree_(tree),
-          s_(tree.Settings()),
-          ray_(ray),
-          tMin_(tMin),
-          tMax_(tMax),
-          accept_(accept),
-          dirLength_(Length(ray.dir)),
-          fixedTolT_(s_.tolerance / dirLength_),
-          fixedFloorT_(std::max(s_.minWidth, s_.tolerance) / dirLength_),
-          adaptive_(s_.autoTolerance && (ray.footprintWidth != 0 || ray.footprintSpread != 0)),
-          tolT_(fixedTolT_),
-          floorT_(fixedFloorT_) {}
-
-    // g at ray parameter t of the current leaf span, summing its active terms only.
-    double G(double t) const {
-        return tree_.GetField().Value(ray_.At(t), terms_) - tree_.Threshold();
-    }
-
-    // Searches one leaf span; true when an accepted root was found (in result).
-    bool Leaf(const LeafSpan& span) {
-        Count(Counters().cellsVisited);
-        double a = span.tEnter, b = span.tExit;
-        if (!(b >= a)) return false;
-        terms_ = span.terms;
-        if (adaptive_) {
-            // The footprint is affine in t, so its smaller end value is its minimum here.
-            const double width = std::min(ray_.footprintWidth + ray_.footprintSpread * a,
-                                          ray_.footprintWidth + ray_.footprintSpread * b);
-            const double tol = std::min(s_.footprintFraction * width, s_.autoToleranceCap);
-            tolT_ = std::max(tol, fixedTolT_);
-            floorT_ = std::max(tol, fixedFloorT_);
-        }
-        double ga = a == cachedT_ ? cachedG_ : G(a);
-        double gb = G(b);
-        cachedT_ = b;
-        cachedG_ = gb;
-        return Search(a, ga, b, gb, span.L * dirLength_, span.G * dirLength_ * dirLength_);
-    }
-
-    std::optional<double> result;
-
-  private:
-    // A sign change of g in [a, b], with its end values.
-    struct Bracket {
-        double a, ga, b, gb;
-    };
-
-    // A candidate root at t, within uncertaintyT of a sign change of g in `bracket`, or with
-    // no bracket to narrow (an exact zero of g).
-    bool Candidate(double t, double uncertaintyT, const Bracket* bracket) {
-        if (!(t > tMin_ && t < tMax_)) return false;
-        using Verdict = LGOctree::RootVerdict;
-        Verdict verdict = accept_ ? accept_(t, uncertaintyT) : Verdict::Accept;
-        if (verdict == Verdict::Undecided && bracket) {
-            const double fineT = LGOctree::kFineRootTolerance *
-                                 std::max(std::abs(bracket->a), std::abs(bracket->b));
-            auto f = [this](double s) { return G(s); };
-            std::optional<RootResult> fine = RiddersRoot(f, bracket->a, bracket->ga, bracket->b,
-                                                         bracket->gb, fineT, kFineIterations);
-            if (fine && fine->root > tMin_ && fine->root < tMax_) {
-                t = fine->root;
-                verdict = accept_(t, fineT);
-            }
-        }
-        if (verdict == Verdict::Reject) {
-            Count(Counters().rejectedRoots);
-            return false;
-        }
-        result = t;
-        return true;
-    }
-    // Ridders' iterations allowed to narrow a tolerance-wide bracket to a few ulps: it at
-    // least halves the bracket each iteration, and 2^-60 covers any tolerance down to the
-    // ulps of t (it converges in a handful on simple roots).
-    static constexpr int kFineIterations = 60;
-
-    bool Ridders(double a, double ga, double b, double gb) {
-        if (tree_.OwnExcluded(Bounds3(ray_.At(a), ray_.At(b)), terms_)) {
-            Count(Counters().excludedSegments);
-            return false;
-        }
-        Count(Counters().ridders);
-        auto f = [this](double t) { return G(t); };
-        std::optional<RootResult> r = RiddersRoot(f, a, ga, b, gb, tolT_, s_.maxRiddersIterations);
-        if (!r) {
-            // Only when maxRiddersIterations is set too low for the bracket: finish by
-            // bisection rather than lose the root.
-            r = BisectRoot(f, a, ga, b, gb, tolT_, 2000);
-            if (!r) return false;
-        }
-        Count(Counters().riddersIterations, r->iterations);
-        // Both solvers stop on a bracket of width <= tolT_ around a sign change
-        // (root_finding.h), or on an exact zero.
-        const Bracket bracket{a, ga, b, gb};
-        return Candidate(r->root, tolT_, &bracket);
-    }
-
-    bool Floor(double a, double ga, double b, double gb) {
-        if (Inside(ga) != Inside(gb) || ga == 0 || gb == 0) {
-            Count(Counters().floorRoots);
-            return Ridders(a, ga, b, gb);
-        }
-        double m = 0.5 * (a + b);
-        double gm = G(m);
-        if (Inside(gm) != Inside(ga) || gm == 0) {
-            Count(Counters().floorRoots);
-            // g changes class in [a, m], so m is within m − a of a sign change.
-            const Bracket bracket{a, ga, m, gm};
-            return Candidate(m, m - a, &bracket);
-        }
-        Count(Counters().unresolved);
-        return false;
-    }
-
-    // lt, gt: the parametric bounds Lt, Gt valid on [a, b].
-    bool Search(double a, double ga, double b, double gb, double lt, double gt) {
-        double lambda = b - a;
-        if (s_.useTest0bis && ga == 0) {
-            Count(Counters().test0bis);
-            if (Candidate(a, 0, nullptr)) return true;
-        }
-        if (lambda <= floorT_) return Floor(a, ga, b, gb);
-        if (!(gt * lambda <= 2 * lt)) {
-            // G is too weak for test 3 ever to fire here (|g'| <= Lt < Gt·λ/2), typically
-            // because the leaf touches a point where F is not C² (a linear kernel's
-            // skeleton, a circle's axis, a polyline's kink) or comes very close to one:
-            // bound the segment's own box instead, which is finite once the segment avoids
-            // those points (research note §5's local bounds). Both bounds hold on [a, b];
-            // keep the smaller L and the segment's G.
-            Count(Counters().segmentBounds);
-            FieldBound local = tree_.GetField().Bound(Bounds3(ray_.At(a), ray_.At(b)));
-            lt = std::min(lt, local.L * dirLength_);
-            gt = std::min(gt, local.G * dirLength_ * dirLength_);
-        }
-        bool signChange = Inside(ga) != Inside(gb) || gb == 0;
-        if (!signChange) {
-            if (s_.useTest1 && std::abs(ga) + std::abs(gb) > lt * lambda) {
-                Count(Counters().test1);
-                return false;
-            }
-            if (s_.useTest2bis && std::min(std::abs(ga), std::abs(gb)) > gt * lambda * lambda / 8) {
-                Count(Counters().test2bisChord);
-                return false;
-            }
-        }
-        double m = 0.5 * (a + b);
-        // g(m) comes with the gradient where that is evaluated (one pass over the terms; the
-        // split below needs it whenever the tests do not conclude).
-        double gm = 0;
-        bool haveGm = false;
-        if ((s_.useTest3 || (s_.useTest2bis && !signChange)) && std::isfinite(gt)) {
-            Vec3 gradient;
-            gm = tree_.GetField().ValueAndGradient(ray_.At(m), terms_, gradient) -
-                 tree_.Threshold();
-            haveGm = true;
-            double slope = Dot(gradient, ray_.dir);
-            if (std::abs(slope) > gt * lambda / 2) {
-                if (!signChange) {
-                    Count(Counters().monotoneNoRoot);
-                    return false;
-                }
-                if (s_.useTest3) {
-                    Count(Counters().test3);
-                    return Ridders(a, ga, b, gb);
-                }
-            }
-        }
-        Count(Counters().splits);
-        if (!haveGm) gm = G(m);
-        return Search(a, ga, m, gm, lt, gt) || Search(m, gm, b, gb, lt, gt);
-    }
-
-    const LGOctree& tree_;
-    const OctreeSettings& s_;
-    Ray ray_;
-    double tMin_, tMax_;
-    const LGOctree::RootFilter& accept_;
-    double dirLength_;
-    double fixedTolT_, fixedFloorT_;  // the fixed tolerance and floor, in units of t
-    bool adaptive_;                   // automatic accuracy on a ray with a footprint
-    double tolT_, floorT_;            // those of the current leaf span
-    double cachedT_ = std::nan(""), cachedG_ = 0;
-    // The current leaf's active terms. A cached end value computed with the previous
-    // leaf's list is still exact: both lists hold every term non-zero at the shared end.
-    std::span<const int32_t> terms_;
-};
-
-}  // namespace
 
 namespace {
 
@@ -680,105 +445,8 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
     return PushInternal(children);
 }
 
-template <class Visitor>
-bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
-                     Visitor& visit) const {
-    if (ref == kEmptyRef || ref == kFullRef) return false;
-    if (ref <= kFirstLeafRef) {
-        const Leaf& leaf = leaves_[kFirstLeafRef - ref];
-        return visit(LeafSpan{t0, t1, leaf.L, leaf.G,
-                              {terms_.data() + leaf.firstTerm, leaf.termCount}});
-    }
-    const uint32_t classes = static_cast<uint32_t>(nodes_[ref]);
-    // Split [t0, t1] where the ray crosses the three mid-planes; each piece lies in one
-    // child, found from the piece's midpoint. Empty and Full children are skipped before
-    // their boxes are formed.
-    const Vec3 c = box.Center();
-    double cuts[5];
-    int n = 0;
-    cuts[n++] = t0;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (ray.dir[axis] == 0) continue;
-        double t = (c[axis] - ray.origin[axis]) / ray.dir[axis];
-        if (t > t0 && t < t1) cuts[n++] = t;
-    }
-    for (int i = 2; i < n; ++i) {  // insertion sort of the (at most three) plane crossings
-        for (int j = i; j > 1 && cuts[j] < cuts[j - 1]; --j) std::swap(cuts[j], cuts[j - 1]);
-    }
-    cuts[n++] = t1;
-    for (int i = 0; i + 1 < n; ++i) {
-        double a = cuts[i], b = cuts[i + 1];
-        if (b <= a && n > 2) continue;
-        const Vec3 p = ray.At(0.5 * (a + b));
-        const int child = (p.x >= c.x ? 1 : 0) | (p.y >= c.y ? 2 : 0) | (p.z >= c.z ? 4 : 0);
-        if (!((classes >> child) & 1)) continue;  // Empty or Full
-        const Ref next = nodes_[ref + 1 + std::popcount(classes & ((1u << child) - 1))];
-        Bounds3 sub;  // ChildBox(box, child), from the centre already at hand
-        sub.lo = {(child & 1) ? c.x : box.lo.x, (child & 2) ? c.y : box.lo.y,
-                  (child & 4) ? c.z : box.lo.z};
-        sub.hi = {(child & 1) ? box.hi.x : c.x, (child & 2) ? box.hi.y : c.y,
-                  (child & 4) ? box.hi.z : c.z};
-        if (Visit(next, sub, ray, a, b, visit)) return true;
-    }
-    return false;
-}
-
-void LGOctree::Traverse(const Ray& ray, double tMin, double tMax,
-                        const std::function<bool(const LeafSpan&)>& visit) const {
-    if (box_.IsEmpty()) return;
-    double t0 = tMin, t1 = tMax;
-    if (!box_.ClipRay(ray, t0, t1)) return;
-    Visit(root_, box_, ray, t0, t1, visit);
-}
-
-CellClass LGOctree::Classify(const Vec3& p) const {
-    if (box_.IsEmpty() || !box_.Contains(p)) return CellClass::Empty;
-    Ref ref = root_;
-    Bounds3 box = box_;
-    while (ref >= 0) {
-        int child = ChildIndexOf(box, p);
-        box = ChildBox(box, child);
-        ref = ChildRef(ref, child);
-    }
-    if (ref == kEmptyRef) return CellClass::Empty;
-    if (ref == kFullRef) return CellClass::Full;
-    return CellClass::Leaf;
-}
-
-std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tMax,
-                                          const RootFilter& accept) const {
-    if (LengthSquared(ray.dir) == 0 || !(tMax > tMin)) return std::nullopt;
-    // The leaf box first: most rays reaching a patch's box miss its leaves. A ray meeting
-    // the leaf box only outside the root box meets no leaf either way (leaves lie in it).
-    double l0 = tMin, l1 = tMax;
-    if (leafBox_.IsEmpty() || !leafBox_.ClipRay(ray, l0, l1)) return std::nullopt;
-    double t0 = tMin, t1 = tMax;
-    if (!box_.ClipRay(ray, t0, t1)) return std::nullopt;
-    RaySearch search(*this, ray, tMin, tMax, accept);
-    auto leaf = [&search](const LeafSpan& span) { return search.Leaf(span); };
-    Visit(root_, box_, ray, t0, t1, leaf);
-    return search.result;
-}
-
 LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings) {
     return LGOctree(patch.GetField(), threshold, patch.Box(), settings, patch.Own());
-}
-
-std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,
-                                     const Ray& ray, double tMin, double tMax) {
-    const double dirLength = Length(ray.dir);
-    const double originLength = Length(ray.origin);
-    return octree.FirstRoot(ray, tMin, tMax, [&](double t, double uncertaintyT) {
-        using Verdict = LGOctree::RootVerdict;
-        const Vec3 p = ray.At(t);
-        if (patch.Predominates(p)) return Verdict::Accept;
-        // The computed point lies within uncertaintyT·|d| of the true root's point, plus
-        // the rounding of o + t·d (a few ulps of |o| + |t|·|d|).
-        const double uncertainty =
-            uncertaintyT * dirLength +
-            Patch::kPositionRounding * (originLength + std::abs(t) * dirLength);
-        return patch.PredominatesNear(p, uncertainty) ? Verdict::Undecided : Verdict::Reject;
-    });
 }
 
 }  // namespace rs
