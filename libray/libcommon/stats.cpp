@@ -1,6 +1,6 @@
 #include "libcommon/stats.h"
 
-#include <array>
+#include <algorithm>
 #include <memory>
 #include <mutex>
 
@@ -11,13 +11,20 @@ namespace {
 struct Registry {
     std::mutex mutex;
     std::vector<std::string> names;
-    std::vector<std::shared_ptr<std::array<uint64_t, detail::kMaxCounters>>> threadArrays;
+    // One array per thread that has counted, kept after the thread ends so its counts still
+    // appear in StatsSnapshot(). A thread resizes only its own array, under the mutex, so
+    // the snapshot never reads one while it moves.
+    std::vector<std::shared_ptr<std::vector<uint64_t>>> threadArrays;
 };
 
 Registry& TheRegistry() {
     static Registry r;
     return r;
 }
+
+// This thread's array in the registry (owned there; the thread_local pointer in detail is
+// its data).
+thread_local std::vector<uint64_t>* threadArray = nullptr;
 
 }  // namespace
 
@@ -26,22 +33,25 @@ CounterId RegisterCounter(const std::string& name) {
     std::lock_guard<std::mutex> lock(r.mutex);
     for (size_t i = 0; i < r.names.size(); ++i)
         if (r.names[i] == name) return static_cast<CounterId>(i);
-    if (r.names.size() >= static_cast<size_t>(detail::kMaxCounters))
-        return detail::kMaxCounters - 1;  // overflow bucket; never reached in practice
     r.names.push_back(name);
     return static_cast<CounterId>(r.names.size() - 1);
 }
 
-uint64_t* detail::RegisterThreadCounters() {
-    // The registry keeps the array alive after the thread ends, so its counts still appear
-    // in StatsSnapshot().
-    auto a = std::make_shared<std::array<uint64_t, kMaxCounters>>();
-    a->fill(0);
+void detail::GrowThreadCounters(CounterId id) {
     Registry& r = TheRegistry();
     std::lock_guard<std::mutex> lock(r.mutex);
-    r.threadArrays.push_back(a);
-    threadCounters = a->data();
-    return threadCounters;
+    if (!threadArray) {
+        auto a = std::make_shared<std::vector<uint64_t>>();
+        r.threadArrays.push_back(a);
+        threadArray = a.get();
+    }
+    // Room for every counter registered so far (at least id), and some to spare, so a
+    // thread grows its array a few times in all.
+    const size_t size = std::max({static_cast<size_t>(id) + 1, r.names.size(),
+                                  2 * threadArray->size(), size_t{256}});
+    threadArray->resize(size, 0);
+    threadCounters = threadArray->data();
+    threadCapacity = static_cast<CounterId>(size);
 }
 
 std::vector<CounterValue> StatsSnapshot() {
@@ -50,7 +60,9 @@ std::vector<CounterValue> StatsSnapshot() {
     std::vector<CounterValue> out;
     for (size_t i = 0; i < r.names.size(); ++i) {
         uint64_t sum = 0;
-        for (const auto& a : r.threadArrays) sum += (*a)[i];
+        for (const auto& a : r.threadArrays) {
+            if (i < a->size()) sum += (*a)[i];
+        }
         out.push_back({r.names[i], sum});
     }
     return out;
@@ -65,7 +77,7 @@ uint64_t CounterTotal(const std::string& name) {
 void ResetStats() {
     Registry& r = TheRegistry();
     std::lock_guard<std::mutex> lock(r.mutex);
-    for (const auto& a : r.threadArrays) a->fill(0);
+    for (const auto& a : r.threadArrays) std::fill(a->begin(), a->end(), 0);
 }
 
 }  // namespace rs

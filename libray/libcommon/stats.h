@@ -16,24 +16,25 @@ using CounterId = int;
 CounterId RegisterCounter(const std::string& name);
 
 namespace detail {
-inline constexpr int kMaxCounters = 1024;
-// This thread's counter array, or null before its first count. A constant-initialised
-// thread_local pointer costs one TLS load per count, with no initialisation guard.
+// This thread's counter array and its length: null and 0 before the thread's first count.
+// Constant-initialised thread_locals cost one TLS load per count, with no initialisation
+// guard. The array grows (GrowThreadCounters) when a counter registered after it was sized
+// is first counted, so any number of counters keeps its own slot.
 inline thread_local uint64_t* threadCounters = nullptr;
-uint64_t* RegisterThreadCounters();
+inline thread_local CounterId threadCapacity = 0;
+// Makes this thread's array hold counter `id` (registering the array on first use).
+void GrowThreadCounters(CounterId id);
 }  // namespace detail
 
 inline void Count(CounterId id, uint64_t n = 1) {
-    uint64_t* counters = detail::threadCounters;
-    if (!counters) counters = detail::RegisterThreadCounters();
-    counters[id] += n;
+    if (id >= detail::threadCapacity) [[unlikely]] detail::GrowThreadCounters(id);
+    detail::threadCounters[id] += n;
 }
 
-// This thread's count of a counter so far (0 before the thread's first count). Callers
+// This thread's count of a counter so far (0 before the thread first counts it). Callers
 // take differences around a piece of work to attribute it (per ray, per object).
 inline uint64_t ThreadCount(CounterId id) {
-    const uint64_t* counters = detail::threadCounters;
-    return counters ? counters[id] : 0;
+    return id < detail::threadCapacity ? detail::threadCounters[id] : 0;
 }
 
 struct CounterValue {
