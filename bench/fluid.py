@@ -178,7 +178,7 @@ def main():
                   % (n, r["wall"], r["cpu"], r["build"], r["rest"], r["evals"], r["built"],
                      r["kept"], r["octree"], r["peak"], agreement), flush=True)
         if len(sizes) > 1:
-            print("CPU per frame, largest / smallest N: %.2f"
+            print("CPU per frame (about the same rays at every N), largest / smallest N: %.2f"
                   % (per_ray[sizes[-1]] / per_ray[sizes[0]]))
         if args.blob:
             pov = not args.no_povray and shutil.which("povray")
