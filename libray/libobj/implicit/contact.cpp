@@ -246,6 +246,69 @@ void GrowAffected(const Field& own, const Field& opponent, double ownEdge, doubl
 
 }  // namespace
 
+namespace {
+
+// Whether p lies inside patch a's undeformed volume and inside b's.
+bool InsideBoth(const Patch& a, const Patch& b, double threshold, const Vec3& p) {
+    return a.GetField().Value(p) > threshold && b.GetField().Value(p) > threshold &&
+           a.Predominates(p) && b.Predominates(p);
+}
+
+// VolumesInterpenetrate below `box` at `depth`.
+bool BothInside(const Patch& a, const Patch& b, double threshold, const Bounds3& box,
+                int depth) {
+    if (!(a.GetField().Bound(box).valueMax > threshold)) return false;
+    if (!(b.GetField().Bound(box).valueMax > threshold)) return false;
+    const Vec3 c = box.Center();
+    if (InsideBoth(a, b, threshold, c)) return true;
+    if (depth == kInterpenetrationDepth) return false;
+    for (int i = 0; i < 8; ++i) {
+        Bounds3 child;
+        child.lo = {(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y, (i & 4) ? c.z : box.lo.z};
+        child.hi = {(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y, (i & 4) ? box.hi.z : c.z};
+        if (BothInside(a, b, threshold, child, depth + 1)) return true;
+    }
+    return false;
+}
+
+bool IsMember(const Patch& patch, int term) {
+    const std::vector<int>& m = patch.Members();
+    return std::find(m.begin(), m.end(), term) != m.end();
+}
+
+}  // namespace
+
+bool VolumesInterpenetrate(const Patch& a, const Patch& b, double threshold) {
+    const Bounds3 overlap = Intersection(a.Box(), b.Box());
+    if (overlap.IsEmpty()) return false;
+    return BothInside(a, b, threshold, overlap, 0);
+}
+
+std::vector<ContactPair> AutomaticContacts(const std::vector<Patch>& patches, double threshold) {
+    // Sweep along x: after sorting by the boxes' low x, the boxes that may overlap box i's
+    // follow it until one starts beyond its high x.
+    std::vector<int> order(patches.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::sort(order.begin(), order.end(), [&](int p, int q) {
+        return patches[p].Box().lo.x < patches[q].Box().lo.x;
+    });
+    std::vector<ContactPair> pairs;
+    for (size_t i = 0; i < order.size(); ++i) {
+        const Patch& pa = patches[order[i]];
+        for (size_t j = i + 1; j < order.size(); ++j) {
+            const Patch& pb = patches[order[j]];
+            if (pb.Box().lo.x > pa.Box().hi.x) break;
+            if (IsMember(pa, pb.Own()) || IsMember(pb, pa.Own())) continue;
+            if (!VolumesInterpenetrate(pa, pb, threshold)) continue;
+            pairs.push_back({std::min(pa.Own(), pb.Own()), std::max(pa.Own(), pb.Own())});
+        }
+    }
+    std::sort(pairs.begin(), pairs.end(), [](const ContactPair& x, const ContactPair& y) {
+        return x.a != y.a ? x.a < y.a : x.b < y.b;
+    });
+    return pairs;
+}
+
 std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
                                          const std::vector<ContactPair>& contacts,
                                          const std::vector<Propagation>& propagations,

@@ -153,6 +153,20 @@ struct DeformedPatch {
     Bounds3 affected;
 };
 
+// Whether the undeformed volumes of two patches interpenetrate: some point lies inside both
+// (each patch field exceeds T there and each own term predominates in its patch, so the
+// point is on both surfaces' inner side). Searched by subdividing the overlap of the two
+// patch boxes, down to depth kInterpenetrationDepth (cells of 1/128 of its edges): a cell
+// where either field stays <= T (Field::Bound) is cleared, and each cell's centre is tested.
+// A "yes" is certain; an interpenetration thinner than the finest cells can be missed.
+bool VolumesInterpenetrate(const Patch& a, const Patch& b, double threshold);
+inline constexpr int kInterpenetrationDepth = 7;
+
+// The pairs `contact auto` adds: every two patches that do not blend (neither term is a
+// member of the other's patch) and whose undeformed volumes interpenetrate, as term index
+// pairs (a < b) in increasing order.
+std::vector<ContactPair> AutomaticContacts(const std::vector<Patch>& patches, double threshold);
+
 // Deforms every patch whose own term appears in a contact pair (pairs naming a term without
 // a patch are ignored) and rebuilds its octree on the deformed field, unless its affected
 // box is empty (the surface and its normals would not change: a contact declared between

@@ -202,7 +202,7 @@ void ResolveContacts(const ImplicitDescription& d, ArgReader& args, ImplicitOpti
                                      [term](const ContactPair& c) {
                                          return c.a == term || c.b == term;
                                      });
-        if (!inContact) {
+        if (!inContact && !options.autoContacts) {
             args.WarnAtLocation(d.Where(p.place),
                         "propagation of '" + p.name + "', which is in no contact");
         }
@@ -224,6 +224,7 @@ ImplicitOptions SettingsOptions(const BlockSettings& s) {
     options.autoDepth = s.autoDepth;
     options.method = s.method;
     options.marchStep = s.marchStep;
+    options.autoContacts = s.autoContacts;
     OctreeSettings declared;
     declared.maxDepth = s.maxDepth;
     declared.tolerance = s.tolerance;

@@ -33,6 +33,10 @@ struct ImplicitOptions {
     // Colliding patches and their attenuation zones (contact.h); patches mode only.
     std::vector<ContactPair> contacts;
     std::vector<Propagation> propagations;
+    // `contact auto`: at each build (each frame) every pair of positive skeletons that do
+    // not blend and whose undeformed patch volumes interpenetrate (VolumesInterpenetrate)
+    // is put in contact too, besides the declared pairs.
+    bool autoContacts = false;
 };
 
 }  // namespace rs

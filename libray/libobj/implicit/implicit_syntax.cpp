@@ -133,7 +133,7 @@ const StatementSyntax kStatements[] = {
     {"field", "field linear|quadratic e k R  |  field blob s R", &BlockReader::ReadField},
     {"blend", "blend Name Name [Name...]  |  blend Hub : Name [Name...]",
      &BlockReader::ReadBlend},
-    {"contact", "contact NameA NameB", &BlockReader::ReadContact},
+    {"contact", "contact NameA NameB  |  contact auto", &BlockReader::ReadContact},
     {"propagation", "propagation Name Width [Height]", &BlockReader::ReadPropagation},
     {"end", "end", nullptr},
 };
@@ -316,6 +316,10 @@ void BlockReader::ReadBlend(const SourceLocation& where) {
 }
 
 void BlockReader::ReadContact(const SourceLocation& where) {
+    if (args_.Accept("auto")) {
+        d_.settings.autoContacts = true;
+        return;
+    }
     ContactSpec contact;
     contact.place = Place(where);
     contact.a = ReadSkeletonName("a skeleton name", where);

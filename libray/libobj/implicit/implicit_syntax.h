@@ -116,6 +116,7 @@ struct BlockSettings {
     double dRatio = OctreeSettings().dRatio;
     ImplicitMethod method = ImplicitMethod::Auto;
     double marchStep = 0;  // <= 0: the method's default
+    bool autoContacts = false;  // `contact auto`
     StatementPlace methodPlace;  // the `method` statement (line 0: none)
 };
 

@@ -100,7 +100,8 @@ ImplicitMethod ResolveAutoMethod(const std::vector<FieldTerm>& terms, bool blend
 std::string ChooseMethod(ImplicitMethod requested, const std::vector<FieldTerm>& terms,
                          const ImplicitOptions& options, ImplicitMethod& chosen) {
     const bool blendsOrContacts =
-        options.blendMode == BlendMode::Explicit || !options.contacts.empty();
+        options.blendMode == BlendMode::Explicit || !options.contacts.empty() ||
+        options.autoContacts;
     const ImplicitMethod method = requested == ImplicitMethod::Auto
                                       ? ResolveAutoMethod(terms, blendsOrContacts)
                                       : requested;

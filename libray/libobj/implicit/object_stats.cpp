@@ -67,6 +67,7 @@ ImplicitObjectStats::ImplicitObjectStats() {
     buildMicroseconds_ = reg("preprocessing time (microseconds)");
     cells_ = reg("octree cells");
     memoryBytes_ = reg("octree memory (bytes)");
+    automaticContacts_ = reg("automatic contacts");
     const size_t count = BuildCounterSources().size();
     buildCounterIds_ = std::make_unique<std::atomic<CounterId>[]>(count);
     for (size_t k = 0; k < count; ++k) buildCounterIds_[k].store(-1);
@@ -75,6 +76,8 @@ ImplicitObjectStats::ImplicitObjectStats() {
 void ImplicitObjectStats::CountPreprocessing(uint64_t microseconds) const {
     Count(buildMicroseconds_, microseconds);
 }
+
+void ImplicitObjectStats::CountAutomaticContact() const { Count(automaticContacts_); }
 
 void ImplicitObjectStats::CountTree(const LGOctree& tree) const {
     Count(cells_, static_cast<uint64_t>(tree.InternalCount() + tree.LeafCount()));

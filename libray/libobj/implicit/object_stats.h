@@ -39,6 +39,9 @@ class ImplicitObjectStats {
     // Counts the cells and memory of a tree built outside BuildTree (contacts build every
     // tree at once; their build figures are counted by the global counters only).
     void CountTree(const LGOctree& tree) const;
+    // Counts one pair put in contact by `contact auto` in this build ("automatic contacts":
+    // the pairs of the frame, since the statistics are reset between frames).
+    void CountAutomaticContact() const;
     // Returns build()'s tree (an LGOctree) and attributes its time, cells, memory and the
     // module counters it advanced ("octree ...", "preprocessing ...") to this object,
     // leaving its evaluations out of the current ray's counts. Thread-safe.
@@ -76,7 +79,7 @@ class ImplicitObjectStats {
 
     std::string label_;
     CounterId tests_, hits_, values_, gradients_, bounds_, riddersIterations_;
-    CounterId buildMicroseconds_, cells_, memoryBytes_;
+    CounterId buildMicroseconds_, cells_, memoryBytes_, automaticContacts_;
     // Per-object counters fed by lazy builds ("<label>: octree ...", "preprocessing ..."),
     // registered on first use; index as the module's build counters, -1 until registered.
     std::unique_ptr<std::atomic<CounterId>[]> buildCounterIds_;

@@ -56,7 +56,22 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
     }
     trees_ = std::make_unique<LazyOctree[]>(patches_.size());
     for (const Patch& p : patches_) bounds_.Extend(p.Box());
-    if (!options.contacts.empty()) {
+    // Declared pairs first; `contact auto` adds the other interpenetrating pairs that do
+    // not blend (declared ones never blend either, so none is found twice).
+    std::vector<ContactPair> contacts = options.contacts;
+    if (options.autoContacts) {
+        for (const ContactPair& c : AutomaticContacts(patches_, threshold_)) {
+            const bool declared =
+                std::any_of(contacts.begin(), contacts.end(), [&](const ContactPair& d) {
+                    return (d.a == c.a && d.b == c.b) || (d.a == c.b && d.b == c.a);
+                });
+            if (!declared) {
+                contacts.push_back(c);
+                stats_.CountAutomaticContact();
+            }
+        }
+    }
+    if (!contacts.empty()) {
         // Contacts measure and deform with every patch's undeformed tree: build them all
         // now, then hand them to the lazy holders as already built.
         std::vector<LGOctree> trees;
@@ -64,7 +79,7 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
         for (const Patch& p : patches_) {
             trees.push_back(BuildPatchOctree(p, threshold_, PatchSettings(p)));
         }
-        contacts_ = ApplyContacts(whole.Terms(), options.contacts, options.propagations,
+        contacts_ = ApplyContacts(whole.Terms(), contacts, options.propagations,
                                   threshold_, settings_, patches_, trees);
         for (size_t i = 0; i < trees.size(); ++i) {
             trees_[i].Set(std::move(trees[i]));

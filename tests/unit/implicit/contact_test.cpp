@@ -457,3 +457,49 @@ TEST(ContactPairs, DeformedSearchFindsTheFirstSignChange) {
 
 }  // namespace
 }  // namespace rs
+
+namespace rs {
+namespace {
+
+// Two lone quadratic points (e = 0.5, T = 1): each volume is the ball of radius e around
+// its point (f(e) = 1, f decreasing), so they interpenetrate exactly when the points are
+// closer than 2e = 1. The search resolves cells of 1/128 of the overlap box (about 0.02
+// here): lenses 0.05 thick are found, and no overlap is ever invented.
+TEST(AutomaticContacts, LoneBallsInterpenetrateBelowTwiceTheThickness) {
+    const Kernel k = Kernel::GascuelQuadratic(0.5, 1.5, 1.2);
+    for (const auto& [distance, expected] :
+         std::vector<std::pair<double, bool>>{{0.6, true}, {0.95, true}, {1.05, false},
+                                              {1.5, false}}) {
+        std::vector<FieldTerm> terms{{"a", PointSkeleton{{0, 0, 0}}, k, 1},
+                                     {"b", PointSkeleton{{distance, 0.1, -0.2}}, k, 1}};
+        // Explicit mode with no pair: nothing blends.
+        std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Explicit);
+        ASSERT_EQ(patches.size(), 2u);
+        EXPECT_EQ(VolumesInterpenetrate(patches[0], patches[1], 1.0), expected) << distance;
+        const std::vector<ContactPair> pairs = AutomaticContacts(patches, 1.0);
+        ASSERT_EQ(pairs.size(), expected ? 1u : 0u) << distance;
+        if (expected) {
+            EXPECT_EQ(pairs[0].a, 0);
+            EXPECT_EQ(pairs[0].b, 1);
+        }
+    }
+}
+
+// Pairs that blend are never put in contact, however deep they overlap.
+TEST(AutomaticContacts, BlendingPairsAreLeftAlone) {
+    const Kernel k = Kernel::GascuelQuadratic(0.5, 1.5, 1.2);
+    std::vector<FieldTerm> terms{{"a", PointSkeleton{{0, 0, 0}}, k, 1},
+                                 {"b", PointSkeleton{{0.5, 0, 0}}, k, 1},
+                                 {"c", PointSkeleton{{0.25, 0.5, 0}}, k, 1}};
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Explicit, {{0, 1}});
+    const std::vector<ContactPair> pairs = AutomaticContacts(patches, 1.0);
+    ASSERT_EQ(pairs.size(), 2u);
+    EXPECT_EQ(pairs[0].a, 0);
+    EXPECT_EQ(pairs[0].b, 2);
+    EXPECT_EQ(pairs[1].a, 1);
+    EXPECT_EQ(pairs[1].b, 2);
+    EXPECT_TRUE(AutomaticContacts(BuildPatches(Field(terms), BlendMode::Automatic), 1.0).empty());
+}
+
+}  // namespace
+}  // namespace rs
