@@ -295,18 +295,22 @@ std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tM
 
 std::optional<double> PatchFirstRoot(const Patch& patch, const LGOctree& octree,
                                      const Ray& ray, double tMin, double tMax) {
-    const double dirLength = Length(ray.dir);
-    const double originLength = Length(ray.origin);
     return octree.FirstRoot(ray, tMin, tMax, [&](double t, double uncertaintyT) {
         using Verdict = LGOctree::RootVerdict;
-        const Vec3 p = ray.At(t);
-        if (patch.Predominates(p)) return Verdict::Accept;
         // The computed point lies within uncertaintyT·|d| of the true root's point, plus
         // the rounding of o + t·d (a few ulps of |o| + |t|·|d|).
+        const double dirLength = Length(ray.dir);
         const double uncertainty =
             uncertaintyT * dirLength +
-            Patch::kPositionRounding * (originLength + std::abs(t) * dirLength);
-        return patch.PredominatesNear(p, uncertainty) ? Verdict::Undecided : Verdict::Reject;
+            Patch::kPositionRounding * (Length(ray.origin) + std::abs(t) * dirLength);
+        switch (patch.PredominanceAt(ray.At(t), uncertainty)) {
+            case Patch::Predominance::Strict:
+                return Verdict::Accept;
+            case Patch::Predominance::Near:
+                return Verdict::Undecided;
+            default:
+                return Verdict::Reject;
+        }
     });
 }
 

@@ -31,24 +31,26 @@ double TermLipschitz(const FieldTerm& term) {
 
 }  // namespace
 
-bool Patch::PredominatesNear(const Vec3& p, double uncertainty) const {
+Patch::Predominance Patch::PredominanceAt(const Vec3& p, double uncertainty) const {
     const std::vector<int>& members = field_.Rows();
     const int ownIndex = members.front();
     const double own = field_.TermValue(ownIndex, p);
+    Predominance result = Predominance::Strict;
     double ownLipschitz = -1;  // computed on first need: most points have no close rival
     for (size_t j = 1; j < members.size(); ++j) {
         const double other = field_.TermValue(members[j], p);
         if (other < own || (other == own && members[j] > ownIndex)) continue;
         // An exact tie keeps its rule (the lowest index wins), so a point computed on a
         // seam still belongs to one patch; only a strictly larger rival is weighed.
-        if (other == own || !(uncertainty > 0)) return false;
+        if (other == own || !(uncertainty > 0)) return Predominance::None;
         if (ownLipschitz < 0) ownLipschitz = TermLipschitz(field_.Terms()[ownIndex]);
         const double slack = (ownLipschitz + TermLipschitz(field_.Terms()[members[j]])) *
                                  uncertainty +
                              kValueRounding * (std::abs(other) + std::abs(own));
-        if (other - own > slack) return false;
+        if (other - own > slack) return Predominance::None;
+        result = Predominance::Near;
     }
-    return true;
+    return result;
 }
 
 bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {

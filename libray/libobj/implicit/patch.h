@@ -47,7 +47,9 @@ class Patch {
     const Bounds3& Box() const { return box_; }
 
     // Whether the own term predominates at p (ties to the lowest term index).
-    bool Predominates(const Vec3& p) const { return PredominatesNear(p, 0); }
+    bool Predominates(const Vec3& p) const {
+        return PredominanceAt(p, 0) == Predominance::Strict;
+    }
     // The seam rule: whether the own term may predominate at some point within distance
     // `uncertainty` of p, i.e. for every neighbour j
     //     c_j(p) − c_own(p) <= (λ_own + λ_j)·uncertainty + κ,
@@ -58,7 +60,13 @@ class Patch {
     // rejected, at a seam between patches or anywhere else; a root accepted by two patches
     // near their seam is harmless (the nearest one wins, and both lie within the
     // uncertainty of the surface). uncertainty = 0: exact predominance.
-    bool PredominatesNear(const Vec3& p, double uncertainty) const;
+    bool PredominatesNear(const Vec3& p, double uncertainty) const {
+        return PredominanceAt(p, uncertainty) != Predominance::None;
+    }
+    // Both tests in one pass over the neighbours: Strict where Predominates holds, Near
+    // where only PredominatesNear does, None otherwise.
+    enum class Predominance { Strict, Near, None };
+    Predominance PredominanceAt(const Vec3& p, double uncertainty) const;
     // Relative rounding of a computed point o + t·d (of |o| + |t|·|d|) and of a term value:
     // a few ulps, generously.
     static constexpr double kPositionRounding = 8 * 0x1p-52, kValueRounding = 8 * 0x1p-52;
