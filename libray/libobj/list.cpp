@@ -34,6 +34,11 @@ bool ListAggregate::Occluded(const Ray& ray, double tMin, double tMax) const {
             return bounded_[i]->Occluded(ray, tMin, tMax);
         });
     }
+    // The same box test as Intersect's: a ray missing every bounded child's box skips them
+    // all, before any child maps the ray into its space (an animated transform evaluated
+    // per shadow ray, in coin.ray).
+    double t0 = tMin, t1 = tMax;
+    if (!unbounded_.empty() && !bounds_.ClipRay(ray, t0, t1)) return false;
     for (const Object* child : bounded_)
         if (child->Occluded(ray, tMin, tMax)) return true;
     return false;
