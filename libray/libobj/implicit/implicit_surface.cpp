@@ -91,13 +91,10 @@ void ImplicitSurface::Build() {
 }
 
 void ImplicitSurface::PrepareFrame(double frameTime) {
-    // The renderer may prepare a frame more than once (its verbose summary prepares the
-    // named objects too); the terms at a time are the same, so rebuild once per time.
-    if (!termsAt_ || preparedTime_ == frameTime) return;
+    if (!termsAt_) return;
     method_.reset();  // it refers to the terms being replaced
     whole_ = Field(termsAt_(frameTime));
     Build();
-    preparedTime_ = frameTime;
 }
 
 const IntersectionCounters& ImplicitSurface::Counters() const {

@@ -11,7 +11,6 @@
 #pragma once
 
 #include <functional>
-#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -71,8 +70,6 @@ class ImplicitSurface final : public Primitive {
     ImplicitObjectStats stats_;
     // Rebuilds the terms for a time (set when any parameter is animated).
     std::function<std::vector<FieldTerm>(double)> termsAt_;
-    // The time PrepareFrame last built the terms for (NaN before: never equal).
-    double preparedTime_ = std::numeric_limits<double>::quiet_NaN();
     // The plain sum. Its table holds the object's terms, stored once: the patches' fields
     // share it.
     Field whole_;
