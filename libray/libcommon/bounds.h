@@ -43,11 +43,17 @@ struct Bounds3 {
     bool ClipRay(const Ray& ray, double& tMin, double& tMax) const {
         // The reciprocals come first, so the three divisions overlap instead of each
         // waiting for the previous axis's test.
-        const Vec3 inv{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z};
+        const Vec3 invDir{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z};
+        return ClipSegment(ray, invDir, tMin, tMax);
+    }
+
+    // ClipRay given the reciprocal direction `invDir` (computed once per ray by callers
+    // testing many boxes).
+    bool ClipSegment(const Ray& ray, const Vec3& invDir, double& tMin, double& tMax) const {
         double near = tMin, far = tMax;
         for (int axis = 0; axis < 3; ++axis) {
-            double t0 = (lo[axis] - ray.origin[axis]) * inv[axis];
-            double t1 = (hi[axis] - ray.origin[axis]) * inv[axis];
+            double t0 = (lo[axis] - ray.origin[axis]) * invDir[axis];
+            double t1 = (hi[axis] - ray.origin[axis]) * invDir[axis];
             if (t0 > t1) std::swap(t0, t1);
             if (t0 > near) near = t0;  // comparisons written so NaN leaves the range alone
             if (t1 < far) far = t1;
@@ -58,20 +64,11 @@ struct Bounds3 {
         return true;
     }
 
-    // Whether the segment (tMin, tMax) of `ray` meets the box, given the reciprocal direction
-    // `invDir` (computed once per ray by callers testing many boxes). IEEE infinities handle
-    // axis-parallel directions; NaN (0·∞ on a slab plane) leaves the range alone, so such a
-    // box is admitted.
+    // Whether the segment (tMin, tMax) of `ray` meets the box (ClipSegment without the
+    // clipped range). NaN (0·∞ on a slab plane) leaves the range alone, so such a box is
+    // admitted.
     bool MeetsSegment(const Ray& ray, const Vec3& invDir, double tMin, double tMax) const {
-        for (int axis = 0; axis < 3; ++axis) {
-            double t0 = (lo[axis] - ray.origin[axis]) * invDir[axis];
-            double t1 = (hi[axis] - ray.origin[axis]) * invDir[axis];
-            if (t0 > t1) std::swap(t0, t1);
-            if (t0 > tMin) tMin = t0;
-            if (t1 < tMax) tMax = t1;
-            if (tMin > tMax) return false;
-        }
-        return true;
+        return ClipSegment(ray, invDir, tMin, tMax);
     }
 };
 

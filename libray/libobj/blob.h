@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "libcommon/arg_reader.h"
-#include "libobj/metaball_sum.h"
+#include "libgeom/metaball_sum.h"
 #include "libobj/primitive.h"
 
 namespace rs {

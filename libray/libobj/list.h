@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "libobj/aggregate.h"
-#include "libobj/bvh.h"
+#include "libgeom/bvh.h"
 
 namespace rs {
 

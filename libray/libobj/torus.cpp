@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "libcommon/constants.h"
-#include "libobj/polynomial.h"
+#include "libgeom/polynomial.h"
 
 namespace rs {
 

@@ -86,12 +86,10 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
             stats_.CountTree(*trees_[i].Built());
         }
     }
-    bvhOrder_.resize(patches_.size());
-    for (size_t i = 0; i < patches_.size(); ++i) bvhOrder_[i] = static_cast<int>(i);
-    if (!patches_.empty()) {
-        bvh_.emplace_back();
-        BuildBvh(0, 0, static_cast<int>(patches_.size()));
-    }
+    std::vector<Bounds3> patchBoxes;
+    patchBoxes.reserve(patches_.size());
+    for (const Patch& patch : patches_) patchBoxes.push_back(patch.Box());
+    bvh_.Build(patchBoxes);
 }
 
 OctreeSettings PatchesMethod::PatchSettings(const Patch& patch) const {
@@ -111,96 +109,27 @@ const LGOctree& PatchesMethod::Tree(int i) const {
     });
 }
 
-// Fills node `index` over the entries [first, first + count) of bvhOrder_, splitting them
-// at the median along the longest axis of their boxes' centres.
-void PatchesMethod::BuildBvh(int index, int first, int count) {
-    Bounds3 box, centres;
-    for (int i = first; i < first + count; ++i) {
-        box.Extend(patches_[bvhOrder_[i]].Box());
-        centres.Extend(patches_[bvhOrder_[i]].Box().Center());
-    }
-    bvh_[index].box = box;
-    if (count <= kBvhLeafSize) {
-        bvh_[index].first = first;
-        bvh_[index].count = count;
-        return;
-    }
-    Vec3 extent = centres.Extent();
-    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-    auto begin = bvhOrder_.begin() + first;
-    std::nth_element(begin, begin + count / 2, begin + count, [&](int a, int b) {
-        double ca = patches_[a].Box().Center()[axis], cb = patches_[b].Box().Center()[axis];
-        return ca < cb || (ca == cb && a < b);
-    });
-    // Children are allocated as a consecutive pair so one index addresses both.
-    int left = static_cast<int>(bvh_.size());
-    bvh_.emplace_back();
-    bvh_.emplace_back();
-    bvh_[index].left = left;
-    BuildBvh(left, first, count / 2);
-    BuildBvh(left + 1, first + count / 2, count - count / 2);
-}
-
 std::optional<double> PatchesMethod::FirstRoot(const Ray& ray, double tMin, double tMax) const {
     std::optional<MethodHit> hit = Intersect(ray, tMin, tMax);
     return hit ? std::optional<double>(hit->t) : std::nullopt;
 }
 
-// Front-to-back BVH walk over the patch boxes, each clipped to (tMin, best) so nodes beyond
-// the best hit so far are skipped. A node is clipped once, when its parent pushes it, and
-// stacked with its entry parameter `near`: its clip to (tMin, best) with the smaller best
-// at its turn succeeds exactly when near <= best (near does not depend on the far end, and
-// the slab exits already passed near).
+// The patches in the order the ray enters their boxes, each box clipped to (tMin, best) so
+// patches beyond the best hit so far are skipped.
 std::optional<MethodHit> PatchesMethod::Intersect(const Ray& ray, double tMin,
                                                   double tMax) const {
     double best = tMax;
     int bestPatch = -1;
-    struct Entry {
-        int node;
-        double near;
-    };
-    Entry stack[64];
-    int top = 0;
-    if (!bvh_.empty()) {
-        double t0 = tMin, t1 = best;
-        if (bvh_[0].box.ClipRay(ray, t0, t1)) stack[top++] = {0, t0};
-    }
-    while (top > 0) {
-        const Entry entry = stack[--top];
-        if (entry.near > best) continue;
-        const BvhNode& node = bvh_[entry.node];
-        if (node.count > 0) {
-            for (int i = node.first; i < node.first + node.count; ++i) {
-                int patch = bvhOrder_[i];
-                // A ray missing the own term's support meets no acceptable root: skip the
-                // patch before its tree is built (the result is the same).
-                if (!patches_[patch].MayHoldRoot(ray, tMin, best)) continue;
-                std::optional<double> t =
-                    PatchFirstRoot(patches_[patch], Tree(patch), ray, tMin, best);
-                if (t) {
-                    best = *t;
-                    bestPatch = patch;
-                }
-            }
-            continue;
-        }
-        // Visit the child whose box the ray enters first next (pushed last).
-        int a = node.left, b = node.left + 1;
-        double ta0 = tMin, ta1 = best, tb0 = tMin, tb1 = best;
-        bool hitA = bvh_[a].box.ClipRay(ray, ta0, ta1), hitB = bvh_[b].box.ClipRay(ray, tb0, tb1);
-        if (hitA && hitB && tb0 < ta0) {
-            std::swap(a, b);
-            std::swap(ta0, tb0);
-        }
-        if (hitA && hitB) {
-            stack[top++] = {b, tb0};
-            stack[top++] = {a, ta0};
-        } else if (hitA) {
-            stack[top++] = {a, ta0};
-        } else if (hitB) {
-            stack[top++] = {b, tb0};
-        }
-    }
+    bvh_.TraverseInEntryOrder(ray, tMin, best, [&](int patch) {
+        // A ray missing the own term's support meets no acceptable root: skip the patch
+        // before its tree is built (the result is the same).
+        if (!patches_[patch].MayHoldRoot(ray, tMin, best)) return false;
+        std::optional<double> t = PatchFirstRoot(patches_[patch], Tree(patch), ray, tMin, best);
+        if (!t) return false;
+        best = *t;
+        bestPatch = patch;
+        return true;
+    });
     if (bestPatch < 0) return std::nullopt;
     return MethodHit{best, patches_[bestPatch].Own()};
 }

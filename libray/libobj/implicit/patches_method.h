@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "libgeom/bvh.h"
 #include "libobj/implicit/contact.h"
 #include "libobj/implicit/implicit_options.h"
 #include "libobj/implicit/intersection_method.h"
@@ -47,22 +48,11 @@ class PatchesMethod final : public IntersectionMethod {
     static int AutoMinDepth(const Patch& patch, double threshold);
 
   private:
-    // A bounding volume hierarchy over the patch boxes: leaves hold up to kBvhLeafSize
-    // consecutive entries of bvhOrder_, inner nodes their two children at left, left + 1.
-    struct BvhNode {
-        Bounds3 box;
-        int left = -1;   // first child (inner nodes)
-        int first = 0;   // first entry of bvhOrder_ (leaves)
-        int count = 0;   // > 0 for leaves
-    };
-    static constexpr int kBvhLeafSize = 2;
-
     // The octree settings of a patch (the object's, with the auto depth).
     OctreeSettings PatchSettings(const Patch& patch) const;
     // Tree of patch i, building it on first use. Thread-safe.
     const LGOctree& Tree(int i) const;
     void BuildContacts(const std::vector<FieldTerm>& terms);
-    void BuildBvh(int index, int first, int count);
     // The patch owning a term's hits (−1 for terms without a patch).
     int PatchOf(int term) const { return term >= 0 ? patchOfTerm_[term] : -1; }
 
@@ -75,8 +65,7 @@ class PatchesMethod final : public IntersectionMethod {
     std::unique_ptr<LazyOctree[]> trees_;  // one per patch
     std::vector<DeformedPatch> contacts_;
     Bounds3 bounds_;
-    std::vector<BvhNode> bvh_;  // root at 0 when there are patches
-    std::vector<int> bvhOrder_;
+    BoundingVolumeHierarchy bvh_;  // over the patch boxes, one item per patch
 };
 
 }  // namespace rs

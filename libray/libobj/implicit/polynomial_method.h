@@ -1,13 +1,11 @@
-// Layer 8 of the implicit module (compiled into ray_obj, beside the primitive): the
-// per-interval polynomial method of Rayshade 4.0's blob primitive (`method polynomial`), a
-// baseline on the plain sum (intersection_method.h). It lives at this layer because it uses
-// libobj's polynomial solver (libobj/polynomial.h), which the pure-math target ray_implicit
-// cannot link.
+// Layer 8 of the implicit module: the per-interval polynomial method of Rayshade 4.0's
+// blob primitive (`method polynomial`), a baseline on the plain sum (intersection_method.h),
+// on libgeom's polynomial solver (libgeom/polynomial.h).
 //
 // Terms: point and segment skeletons with the blob kernel s(1 − r²/R²)² only
 // (CheckPolynomialTerms), each a metaball (a capsule for a segment) of strength w·s
 // (negative weights carve). The search is MetaballSum's
-// (libobj/metaball_sum.h, shared with the `blob` primitive): one quartic per interval
+// (libgeom/metaball_sum.h, shared with the `blob` primitive): one quartic per interval
 // between the ray's entries into and exits from the spheres of radius R, formed with the
 // origin moved to the interval's start (no cancellation for distant cameras, research note
 // §8), the first root in (tMin, tMax) whichever interval it is in (no lost exits for rays
@@ -24,8 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "libgeom/metaball_sum.h"
 #include "libobj/implicit/intersection_method.h"
-#include "libobj/metaball_sum.h"
 
 namespace rs {
 

@@ -1,4 +1,4 @@
-#include "libobj/polynomial.h"
+#include "libgeom/polynomial.h"
 
 #include <gtest/gtest.h>
 

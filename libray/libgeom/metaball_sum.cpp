@@ -1,11 +1,11 @@
-#include "libobj/metaball_sum.h"
+#include "libgeom/metaball_sum.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
 
-#include "libobj/polynomial.h"
+#include "libgeom/polynomial.h"
 
 namespace rs {
 

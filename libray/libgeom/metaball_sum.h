@@ -38,7 +38,7 @@
 #include "libcommon/bounds.h"
 #include "libcommon/large_buffer.h"
 #include "libcommon/ray.h"
-#include "libobj/bvh.h"
+#include "libgeom/bvh.h"
 
 namespace rs {
 

@@ -1,4 +1,4 @@
-#include "libobj/bvh.h"
+#include "libgeom/bvh.h"
 
 #include <algorithm>
 
@@ -106,7 +106,12 @@ int BoundingVolumeHierarchy::BuildNode(std::vector<int>& items, int begin, int e
     if (mid == kSahMedian) {
         mid = begin + (end - begin) / 2;
         std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
-                         [&](int a, int b) { return boxes[a].Center()[axis] < boxes[b].Center()[axis]; });
+                         [&](int a, int b) {
+                             // Ties broken by item, so which items go to each half
+                             // does not depend on the standard library.
+                             const double ca = boxes[a].Center()[axis], cb = boxes[b].Center()[axis];
+                             return ca < cb || (ca == cb && a < b);
+                         });
     }
     BuildNode(items, begin, mid, boxes, split, depth + 1);
     int right = BuildNode(items, mid, end, boxes, split, depth + 1);

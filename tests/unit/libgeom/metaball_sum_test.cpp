@@ -1,7 +1,7 @@
-// MetaballSum (libobj/metaball_sum.h) against analytic answers, through each of its search
+// MetaballSum (libgeom/metaball_sum.h) against analytic answers, through each of its search
 // structures: balls far enough apart that their spheres of influence do not overlap are
 // spheres of radius r·sqrt(1 − sqrt(T/s)).
-#include "libobj/metaball_sum.h"
+#include "libgeom/metaball_sum.h"
 
 #include <gtest/gtest.h>
 

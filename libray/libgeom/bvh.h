@@ -1,10 +1,12 @@
 // A bounding volume hierarchy over a set of boxes, used by `list` to test only the children
 // a ray can reach (the original tests every child of a list; the nearest hit is the same,
-// because every child whose box meets the remaining ray segment is still tested), and by
-// the metaball sums of `blob` and `method polynomial` (metaball_sum.h).
+// because every child whose box meets the remaining ray segment is still tested), by the
+// metaball sums of `blob` and `method polynomial` (metaball_sum.h), and by the implicit
+// patches (one item per patch box).
 #pragma once
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "libcommon/bounds.h"
@@ -26,8 +28,9 @@ class BoundingVolumeHierarchy {
     void Build(const std::vector<Bounds3>& boxes, Split split = Split::Median);
     bool IsEmpty() const { return nodes_.empty(); }
 
-    // Calls visit(i) for every item whose box meets the ray segment (tMin, tMax), nearer
-    // subtrees first. visit returns true when it found a hit, and may then have shrunk tMax;
+    // Calls visit(i) once for every item whose box meets the ray segment (tMin, tMax), nearer
+    // subtrees first (items sharing a leaf with such an item may be visited too: item
+    // boxes are not tested one by one). visit returns true when it found a hit, and may then have shrunk tMax;
     // later boxes are clipped against the shrunken segment. Returns whether any visit hit.
     // With kStopAtFirstHit the walk returns at the first visit that hits (occlusion).
     template <bool kStopAtFirstHit = false, class Visit>
@@ -69,7 +72,54 @@ class BoundingVolumeHierarchy {
         return found;
     }
 
-    // Calls visit(i) for every item whose box contains p.
+    // As Traverse, with children ordered by the parameter at which the ray enters their
+    // boxes rather than by the split axis, and a node skipped once its entry lies beyond the
+    // shrunken tMax. Each box is clipped once, when its parent is visited, and stacked with
+    // its entry `near`: the clip to (tMin, tMax) with a smaller tMax at its turn succeeds
+    // exactly when near <= tMax (near does not depend on the far end, and the slab exits
+    // already passed near). For items that are expensive to visit (an implicit patch may
+    // build its octree), so that the nearest ones come first.
+    template <class Visit>
+    bool TraverseInEntryOrder(const Ray& ray, double tMin, double& tMax, Visit&& visit) const {
+        if (nodes_.empty()) return false;
+        const Vec3 invDir{1 / ray.dir.x, 1 / ray.dir.y, 1 / ray.dir.z};
+        struct Entry {
+            int node;
+            double near;
+        };
+        // Visiting a node replaces it by at most two children, so the stack never holds more
+        // than the tree's depth + 1 < 64 entries (see Split).
+        Entry stack[64];
+        int top = 0;
+        double near = tMin, far = tMax;
+        if (nodes_[0].box.ClipSegment(ray, invDir, near, far)) stack[top++] = {0, near};
+        bool found = false;
+        while (top > 0) {
+            const Entry entry = stack[--top];
+            if (entry.near > tMax) continue;
+            const Node& node = nodes_[entry.node];
+            if (node.count > 0) {
+                for (int i = 0; i < node.count; ++i) found |= visit(items_[node.first + i]);
+                continue;
+            }
+            int a = entry.node + 1, b = node.right;
+            double nearA = tMin, farA = tMax, nearB = tMin, farB = tMax;
+            const bool hitA = nodes_[a].box.ClipSegment(ray, invDir, nearA, farA);
+            const bool hitB = nodes_[b].box.ClipSegment(ray, invDir, nearB, farB);
+            if (hitA && hitB && nearB < nearA) {
+                std::swap(a, b);
+                std::swap(nearA, nearB);
+            }
+            // The child entered first is pushed last, so it is visited next.
+            if (hitA && hitB) stack[top++] = {b, nearB};
+            if (hitA) stack[top++] = {a, nearA};
+            else if (hitB) stack[top++] = {b, nearB};
+        }
+        return found;
+    }
+
+    // Calls visit(i) once for every item whose box contains p (and possibly others sharing
+    // its leaf).
     template <class Visit>
     void VisitContaining(const Vec3& p, Visit&& visit) const {
         if (nodes_.empty()) return;

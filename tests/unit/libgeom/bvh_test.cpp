@@ -1,0 +1,195 @@
+// BoundingVolumeHierarchy against brute force over random boxes and rays: both traversals
+// visit every item whose box meets the segment exactly once (when no visit shrinks it; items
+// sharing a leaf with one may be visited too), find the nearest of per-item hits however the
+// segment shrinks, and VisitContaining finds every box holding a point, once. Box-ray tests themselves are Bounds3's (tested in libcommon);
+// what is tested here is that the hierarchy loses no item and keeps no stale one.
+#include "libgeom/bvh.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+#include <set>
+#include <vector>
+
+#include "libcommon/random.h"
+
+namespace rs {
+namespace {
+
+using Split = BoundingVolumeHierarchy::Split;
+
+double Uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * rng.Uniform(); }
+
+Vec3 RandomPoint(Rng& rng, double extent) {
+    return {Uniform(rng, -extent, extent), Uniform(rng, -extent, extent),
+            Uniform(rng, -extent, extent)};
+}
+
+// Boxes of random sizes in [-10, 10]^3; every fourth shares its centre with the previous
+// one (ties in the median split), and every seventh is flat along an axis.
+std::vector<Bounds3> RandomBoxes(Rng& rng, int count) {
+    std::vector<Bounds3> boxes;
+    for (int i = 0; i < count; ++i) {
+        const Vec3 centre = (i % 4 == 3) ? boxes.back().Center() : RandomPoint(rng, 10);
+        Vec3 half{Uniform(rng, 0.01, 2), Uniform(rng, 0.01, 2), Uniform(rng, 0.01, 2)};
+        if (i % 7 == 6) half[i % 3] = 0;
+        boxes.emplace_back(centre - half, centre + half);
+    }
+    return boxes;
+}
+
+// Rays from outside and inside the boxes' region; one in five parallel to an axis plane.
+Ray RandomRay(Rng& rng, int index) {
+    Ray ray;
+    ray.origin = RandomPoint(rng, 14);
+    ray.dir = RandomPoint(rng, 1);
+    if (index % 5 == 4) ray.dir[index % 3] = 0;
+    if (LengthSquared(ray.dir) == 0) ray.dir = {1, 0, 0};
+    return ray;
+}
+
+std::set<int> BruteForceMeeting(const std::vector<Bounds3>& boxes, const Ray& ray, double tMin,
+                                double tMax) {
+    std::set<int> items;
+    for (size_t i = 0; i < boxes.size(); ++i) {
+        double t0 = tMin, t1 = tMax;
+        if (boxes[i].ClipRay(ray, t0, t1)) items.insert(static_cast<int>(i));
+    }
+    return items;
+}
+
+// Each item's "hit": a point of its box's clipped segment, fixed per item and ray.
+std::vector<double> ItemHits(const std::vector<Bounds3>& boxes, const Ray& ray, double tMin,
+                             double tMax, Rng& rng) {
+    std::vector<double> hits(boxes.size(), std::numeric_limits<double>::infinity());
+    for (size_t i = 0; i < boxes.size(); ++i) {
+        double t0 = tMin, t1 = tMax;
+        if (boxes[i].ClipRay(ray, t0, t1)) hits[i] = Uniform(rng, t0, t1);
+    }
+    return hits;
+}
+
+class BvhTest : public ::testing::TestWithParam<Split> {};
+
+TEST_P(BvhTest, BothTraversalsVisitEveryItemMeetingTheSegmentOnce) {
+    Rng rng(11);
+    for (int count : {1, 2, 3, 5, 17, 64, 200}) {
+        BoundingVolumeHierarchy bvh;
+        const std::vector<Bounds3> boxes = RandomBoxes(rng, count);
+        bvh.Build(boxes, GetParam());
+        for (int r = 0; r < 300; ++r) {
+            const Ray ray = RandomRay(rng, r);
+            const double tMin = Uniform(rng, -5, 5), tMaxStart = tMin + Uniform(rng, 0, 40);
+            const std::set<int> expected = BruteForceMeeting(boxes, ray, tMin, tMaxStart);
+            std::multiset<int> byAxis, byEntry;
+            double tMax = tMaxStart;
+            bvh.Traverse(ray, tMin, tMax, [&](int i) { return byAxis.insert(i), false; });
+            bvh.TraverseInEntryOrder(ray, tMin, tMax, [&](int i) { return byEntry.insert(i), false; });
+            for (const std::multiset<int>* visited : {&byAxis, &byEntry}) {
+                for (int i : expected) EXPECT_EQ(visited->count(i), 1u) << count << " boxes, ray " << r;
+                EXPECT_EQ(std::set<int>(visited->begin(), visited->end()).size(), visited->size());
+            }
+            EXPECT_EQ(tMax, tMaxStart);
+        }
+    }
+}
+
+TEST_P(BvhTest, ShrinkingTraversalsFindTheNearestHit) {
+    Rng rng(12);
+    for (int count : {1, 4, 33, 150}) {
+        BoundingVolumeHierarchy bvh;
+        const std::vector<Bounds3> boxes = RandomBoxes(rng, count);
+        bvh.Build(boxes, GetParam());
+        for (int r = 0; r < 400; ++r) {
+            const Ray ray = RandomRay(rng, r);
+            const double tMin = 0, tMaxStart = 60;
+            const std::vector<double> hits = ItemHits(boxes, ray, tMin, tMaxStart, rng);
+            const double nearest = *std::min_element(hits.begin(), hits.end());
+            const auto nearestOf = [&](auto traverse) {
+                double tMax = tMaxStart;
+                const bool found = traverse(tMax, [&](int i) {
+                    if (!(hits[i] < tMax)) return false;
+                    tMax = hits[i];
+                    return true;
+                });
+                EXPECT_EQ(found, nearest < tMaxStart);
+                return tMax;
+            };
+            const double expected = nearest < tMaxStart ? nearest : tMaxStart;
+            EXPECT_EQ(expected, nearestOf([&](double& tMax, auto visit) {
+                return bvh.Traverse(ray, tMin, tMax, visit);
+            })) << count << " boxes, ray " << r;
+            EXPECT_EQ(expected, nearestOf([&](double& tMax, auto visit) {
+                return bvh.TraverseInEntryOrder(ray, tMin, tMax, visit);
+            })) << count << " boxes, ray " << r;
+        }
+    }
+}
+
+TEST_P(BvhTest, OcclusionTraversalStopsAtTheFirstHit) {
+    Rng rng(13);
+    BoundingVolumeHierarchy bvh;
+    const std::vector<Bounds3> boxes = RandomBoxes(rng, 80);
+    bvh.Build(boxes, GetParam());
+    for (int r = 0; r < 400; ++r) {
+        const Ray ray = RandomRay(rng, r);
+        int visitsAfterHit = 0;
+        bool anyBlockerVisited = false;
+        bool hitSeen = false;
+        double tMax = 60;
+        // Items of even index are opaque blockers.
+        const bool occluded = bvh.Traverse<true>(ray, 0, tMax, [&](int i) {
+            if (hitSeen) ++visitsAfterHit;
+            hitSeen = hitSeen || i % 2 == 0;
+            return i % 2 == 0;
+        });
+        // Whether the full walk would visit a blocker at all.
+        double fullMax = 60;
+        bvh.Traverse(ray, 0, fullMax, [&](int i) {
+            anyBlockerVisited = anyBlockerVisited || i % 2 == 0;
+            return false;
+        });
+        EXPECT_EQ(occluded, anyBlockerVisited) << "ray " << r;
+        EXPECT_EQ(visitsAfterHit, 0) << "ray " << r;
+    }
+}
+
+TEST_P(BvhTest, VisitContainingFindsEveryBoxHoldingThePointOnce) {
+    Rng rng(14);
+    BoundingVolumeHierarchy bvh;
+    const std::vector<Bounds3> boxes = RandomBoxes(rng, 120);
+    bvh.Build(boxes, GetParam());
+    for (int k = 0; k < 2000; ++k) {
+        // Half the points are box corners, on the boundary.
+        const Vec3 p = k % 2 ? RandomPoint(rng, 11) : boxes[k % boxes.size()].Corner(k % 8);
+        std::multiset<int> found;
+        bvh.VisitContaining(p, [&](int i) { found.insert(i); });
+        for (size_t i = 0; i < boxes.size(); ++i) {
+            if (!boxes[i].Contains(p)) continue;
+            EXPECT_EQ(found.count(static_cast<int>(i)), 1u) << "point " << k;
+        }
+        EXPECT_EQ(std::set<int>(found.begin(), found.end()).size(), found.size());
+    }
+}
+
+TEST_P(BvhTest, EmptyHierarchyVisitsNothing) {
+    BoundingVolumeHierarchy bvh;
+    bvh.Build({}, GetParam());
+    EXPECT_TRUE(bvh.IsEmpty());
+    Ray ray;
+    ray.dir = {1, 0, 0};
+    double tMax = 1;
+    int visits = 0;
+    EXPECT_FALSE(bvh.Traverse(ray, 0, tMax, [&](int) { return ++visits, true; }));
+    EXPECT_FALSE(bvh.TraverseInEntryOrder(ray, 0, tMax, [&](int) { return ++visits, true; }));
+    EXPECT_EQ(visits, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Splits, BvhTest, ::testing::Values(Split::Median, Split::SurfaceArea),
+                         [](const ::testing::TestParamInfo<Split>& split) {
+                             return split.param == Split::Median ? "Median" : "SurfaceArea";
+                         });
+
+}  // namespace
+}  // namespace rs
