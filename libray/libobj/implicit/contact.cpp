@@ -309,59 +309,83 @@ std::vector<ContactPair> AutomaticContacts(const std::vector<Patch>& patches, do
     return pairs;
 }
 
+namespace {
+
+// The opponents of each patch (patch indices, sorted, without repeats): the patches of the
+// terms each contact pairs it with. Pairs naming a term without a patch are ignored.
+std::vector<std::vector<int>> ContactOpponents(const std::vector<ContactPair>& contacts,
+                                               const std::vector<Patch>& patches, int termCount) {
+    std::vector<int> patchOf(termCount, -1);
+    for (size_t i = 0; i < patches.size(); ++i) patchOf[patches[i].Own()] = static_cast<int>(i);
+    std::vector<std::vector<int>> opponents(patches.size());
+    for (const ContactPair& c : contacts) {
+        if (c.a < 0 || c.b < 0 || c.a >= termCount || c.b >= termCount || c.a == c.b) continue;
+        int pa = patchOf[c.a], pb = patchOf[c.b];
+        if (pa < 0 || pb < 0) continue;
+        opponents[pa].push_back(pb);
+        opponents[pb].push_back(pa);
+    }
+    for (std::vector<int>& opp : opponents) {
+        std::sort(opp.begin(), opp.end());
+        opp.erase(std::unique(opp.begin(), opp.end()), opp.end());
+    }
+    return opponents;
+}
+
+// A patch's contact before it deforms: its opponents' field and its bulge profile, measured
+// on the undeformed trees.
+struct ContactPlan {
+    DeformedPatch result;
+    Field opponent;
+    BulgeProfile profile;
+};
+
+ContactPlan PlanContact(const std::vector<FieldTerm>& terms,
+                        const std::vector<Propagation>& propagations, double threshold,
+                        const std::vector<Patch>& patches, const std::vector<LGOctree>& trees,
+                        int patch, const std::vector<int>& opponents) {
+    std::vector<FieldTerm> oppTerms;
+    for (int t : UnionOfMembers(patches, opponents)) oppTerms.push_back(terms[t]);
+    ContactPlan plan;
+    plan.result.patch = patch;
+    plan.opponent = Field(std::move(oppTerms));
+    const int own = patches[patch].Own();
+    for (const Propagation& prop : propagations) {
+        if (prop.term != own || !(prop.width > 0)) continue;
+        WidthMeasure m = MeasureWidth(terms, patches, trees, patch, opponents, plan.opponent,
+                                      threshold, prop.width);
+        if (!m.measured) {
+            Report(Severity::Warn, {},
+                   "implicit contact: no propagation zone for '%s' (the line from its "
+                   "skeleton to the opponent's meets no opponent surface)",
+                   terms[own].name.c_str());
+            continue;
+        }
+        plan.result.interpenetrates = m.interpenetrates;
+        if (m.interpenetrates) {
+            plan.result.fieldWidth = m.fieldWidth;
+            plan.profile = BulgeProfile(m.fieldWidth, prop.height);
+        }
+    }
+    return plan;
+}
+
+}  // namespace
+
 std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
                                          const std::vector<ContactPair>& contacts,
                                          const std::vector<Propagation>& propagations,
                                          double threshold, const OctreeSettings& settings,
                                          std::vector<Patch>& patches,
                                          std::vector<LGOctree>& trees) {
-    const int n = static_cast<int>(terms.size());
-    std::vector<int> patchOf(n, -1);
-    for (size_t i = 0; i < patches.size(); ++i) patchOf[patches[i].Own()] = static_cast<int>(i);
-    std::vector<std::vector<int>> opponents(patches.size());
-    for (const ContactPair& c : contacts) {
-        if (c.a < 0 || c.b < 0 || c.a >= n || c.b >= n || c.a == c.b) continue;
-        int pa = patchOf[c.a], pb = patchOf[c.b];
-        if (pa < 0 || pb < 0) continue;
-        opponents[pa].push_back(pb);
-        opponents[pb].push_back(pa);
-    }
+    const std::vector<std::vector<int>> opponents =
+        ContactOpponents(contacts, patches, static_cast<int>(terms.size()));
     // Measure every width on the undeformed trees first, then deform.
-    struct Plan {
-        DeformedPatch result;
-        Field opponent;
-        BulgeProfile profile;
-    };
-    std::vector<Plan> plans;
+    std::vector<ContactPlan> plans;
     for (size_t i = 0; i < patches.size(); ++i) {
-        std::vector<int>& opp = opponents[i];
-        if (opp.empty()) continue;
-        std::sort(opp.begin(), opp.end());
-        opp.erase(std::unique(opp.begin(), opp.end()), opp.end());
-        std::vector<FieldTerm> oppTerms;
-        for (int t : UnionOfMembers(patches, opp)) oppTerms.push_back(terms[t]);
-        Plan plan;
-        plan.result.patch = static_cast<int>(i);
-        plan.opponent = Field(std::move(oppTerms));
-        const int own = patches[i].Own();
-        for (const Propagation& prop : propagations) {
-            if (prop.term != own || !(prop.width > 0)) continue;
-            WidthMeasure m = MeasureWidth(terms, patches, trees, static_cast<int>(i), opp,
-                                          plan.opponent, threshold, prop.width);
-            if (!m.measured) {
-                Report(Severity::Warn, {},
-                       "implicit contact: no propagation zone for '%s' (the line from its "
-                       "skeleton to the opponent's meets no opponent surface)",
-                       terms[own].name.c_str());
-                continue;
-            }
-            plan.result.interpenetrates = m.interpenetrates;
-            if (m.interpenetrates) {
-                plan.result.fieldWidth = m.fieldWidth;
-                plan.profile = BulgeProfile(m.fieldWidth, prop.height);
-            }
-        }
-        plans.push_back(std::move(plan));
+        if (opponents[i].empty()) continue;
+        plans.push_back(PlanContact(terms, propagations, threshold, patches, trees,
+                                    static_cast<int>(i), opponents[i]));
     }
     // The deformed field's G is dominated near the contact by max|δ''|·L_O², up to
     // (2 + 4η)L_O²/w: leaves must be small for the search's monotonicity test (λ < 2L/G) to
@@ -373,7 +397,7 @@ std::vector<DeformedPatch> ApplyContacts(const std::vector<FieldTerm>& terms,
     OctreeSettings deformed = settings;
     deformed.minDepth = std::min(settings.minDepth + 2, settings.maxDepth);
     std::vector<DeformedPatch> out;
-    for (Plan& plan : plans) {
+    for (ContactPlan& plan : plans) {
         const int i = plan.result.patch;
         auto deformation =
             std::make_shared<ContactDeformation>(std::move(plan.opponent), threshold, plan.profile);

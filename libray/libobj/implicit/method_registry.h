@@ -1,6 +1,5 @@
-// Layer 8 of the implicit module (compiled into ray_obj): the registry of intersection
-// methods, name → factory, so the primitive and the command-line overrides dispatch through
-// one table. `auto` is a rule, not a method: it becomes patches or polynomial
+// Layer 8 of the implicit module: the registry of intersection methods, name → factory, so
+// the primitive and the command-line overrides dispatch through one table. `auto` is a rule, not a method: it becomes patches or polynomial
 // (ResolveAutoMethod), so its row has no factory.
 #pragma once
 
