@@ -52,7 +52,6 @@ class PatchesMethod final : public IntersectionMethod {
     OctreeSettings PatchSettings(const Patch& patch) const;
     // Tree of patch i, building it on first use. Thread-safe.
     const LGOctree& Tree(int i) const;
-    void BuildContacts(const std::vector<FieldTerm>& terms);
     // The patch owning a term's hits (−1 for terms without a patch).
     int PatchOf(int term) const { return term >= 0 ? patchOfTerm_[term] : -1; }
 
