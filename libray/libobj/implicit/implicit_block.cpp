@@ -225,13 +225,11 @@ ImplicitOptions SettingsOptions(const BlockSettings& s) {
     options.method = s.method;
     options.marchStep = s.marchStep;
     options.autoContacts = s.autoContacts;
-    OctreeSettings declared;
-    declared.maxDepth = s.maxDepth;
-    declared.tolerance = s.tolerance;
-    declared.minWidth = s.tolerance;
-    declared.autoTolerance = s.autoTolerance;
+    options.search.tolerance = s.tolerance;
+    options.search.minWidth = s.tolerance;
+    options.search.autoTolerance = s.autoTolerance;
     options.patchesDRatio = s.dRatio;
-    options.octree = MethodOctreeSettings(options.method, declared, s.dRatio);
+    options.octree = MethodOctreeHeuristics(options.method, s.maxDepth, s.dRatio);
     return options;
 }
 

@@ -1,6 +1,7 @@
 // Layer 8 of the implicit module: the settings of one implicit object, as its block and
-// the command line give them (the block's defaults: implicit_syntax.h BlockSettings; the
-// octree's: OctreeSettings). The registry's factories make a method from them.
+// the command line give them: every method's root search settings (root_finding.h), the
+// octree methods' heuristics (lg_octree.h) and the object's own. The registry's factories
+// make a method from them.
 #pragma once
 
 #include <utility>
@@ -16,9 +17,10 @@ enum class ImplicitMethod { Patches, Kb89, March, Sphere, Segment, Polynomial, E
 
 struct ImplicitOptions {
     double threshold = 1;
-    // The search and build settings of the octree methods; octree.tolerance is every
-    // method's root accuracy.
-    OctreeSettings octree;
+    // Every method's root accuracy.
+    RootSearchSettings search;
+    // The octree methods' heuristics (kb89's or the patches', MethodOctreeHeuristics).
+    OctreeHeuristics octree;
     // Gascuel's Dratio as declared, restored when the method becomes Patches again.
     double patchesDRatio = 2;
     // `octree auto`: each patch's octree depth from its own skeleton's thickness

@@ -11,22 +11,22 @@ namespace {
 
 struct SwitchEntry {
     const char* name;
-    bool OctreeSettings::*flag;
+    bool OctreeHeuristics::*flag;
 };
 
 constexpr SwitchEntry kSwitches[] = {
-    {"range", &OctreeSettings::useValueRange},
-    {"patch", &OctreeSettings::usePredominancePruning},
-    {"1", &OctreeSettings::useHeuristic1},
-    {"1bis", &OctreeSettings::useHeuristic1bis},
-    {"3", &OctreeSettings::useHeuristic3},
-    {"3bis", &OctreeSettings::useHeuristic3bis},
-    {"4", &OctreeSettings::useHeuristic4},
-    {"5", &OctreeSettings::useHeuristic5},
-    {"0bis", &OctreeSettings::useTest0bis},
-    {"t1", &OctreeSettings::useTest1},
-    {"2bis", &OctreeSettings::useTest2bis},
-    {"t3", &OctreeSettings::useTest3},
+    {"range", &OctreeHeuristics::useValueRange},
+    {"patch", &OctreeHeuristics::usePredominancePruning},
+    {"1", &OctreeHeuristics::useHeuristic1},
+    {"1bis", &OctreeHeuristics::useHeuristic1bis},
+    {"3", &OctreeHeuristics::useHeuristic3},
+    {"3bis", &OctreeHeuristics::useHeuristic3bis},
+    {"4", &OctreeHeuristics::useHeuristic4},
+    {"5", &OctreeHeuristics::useHeuristic5},
+    {"0bis", &OctreeHeuristics::useTest0bis},
+    {"t1", &OctreeHeuristics::useTest1},
+    {"2bis", &OctreeHeuristics::useTest2bis},
+    {"t3", &OctreeHeuristics::useTest3},
 };
 
 }  // namespace
@@ -40,9 +40,9 @@ const std::vector<std::string>& OctreeSwitchNames() {
     return names;
 }
 
-bool* OctreeSwitch(OctreeSettings& settings, const std::string& name) {
+bool* OctreeSwitch(OctreeHeuristics& heuristics, const std::string& name) {
     for (const SwitchEntry& e : kSwitches) {
-        if (name == e.name) return &(settings.*e.flag);
+        if (name == e.name) return &(heuristics.*e.flag);
     }
     return nullptr;
 }
@@ -52,7 +52,7 @@ bool ParseOctreeSwitch(const std::string& assignment, ImplicitOverrides& overrid
     const size_t eq = assignment.find('=');
     const std::string name = assignment.substr(0, eq);
     const std::string value = eq == std::string::npos ? "" : assignment.substr(eq + 1);
-    OctreeSettings probe;
+    OctreeHeuristics probe;
     if (!OctreeSwitch(probe, name)) {
         std::string names;
         for (const std::string& n : OctreeSwitchNames()) names += (names.empty() ? "" : ", ") + n;

@@ -19,7 +19,7 @@ struct ImplicitOverrides {
     std::optional<int> maxDepth;      // octree depth (patches, kb89)
     std::optional<double> dRatio;     // Gascuel's Dratio (patches)
     std::optional<double> step;       // march step (object-space distance)
-    // OctreeSettings switches by name (OctreeSwitchNames), applied in order after the
+    // OctreeHeuristics switches by name (OctreeSwitchNames), applied in order after the
     // method's defaults.
     std::vector<std::pair<std::string, bool>> switches;
 
@@ -28,13 +28,13 @@ struct ImplicitOverrides {
     }
 };
 
-// The names of the octree switches, in the order of OctreeSettings:
+// The names of the octree switches, in the order of OctreeHeuristics:
 //   range (useValueRange), patch (usePredominancePruning), 1, 1bis, 3, 3bis, 4, 5 (build
 //   heuristics useHeuristic…), 0bis, t1, 2bis, t3 (search tests useTest0bis, useTest1,
 //   useTest2bis, useTest3).
 const std::vector<std::string>& OctreeSwitchNames();
 // The flag named `name` in `settings`, or null for an unknown name.
-bool* OctreeSwitch(OctreeSettings& settings, const std::string& name);
+bool* OctreeSwitch(OctreeHeuristics& heuristics, const std::string& name);
 
 // Parses "NAME=on|off" (NAME from OctreeSwitchNames) and appends it to overrides.switches;
 // false with a message otherwise.

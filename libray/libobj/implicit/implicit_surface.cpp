@@ -45,8 +45,8 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
             return stats_.Label() + ": " + error;
         }
         options_.method = method;
-        options_.octree =
-            MethodOctreeSettings(options_.method, options_.octree, options_.patchesDRatio);
+        options_.octree = MethodOctreeHeuristics(options_.method, options_.octree.maxDepth,
+                                                 options_.patchesDRatio);
     }
     if (overrides.maxDepth) {
         options_.octree.maxDepth = *overrides.maxDepth;
@@ -57,9 +57,9 @@ std::string ImplicitSurface::ApplyOverrides(const ImplicitOverrides& overrides) 
         if (options_.method != ImplicitMethod::Kb89) options_.octree.dRatio = *overrides.dRatio;
     }
     if (overrides.tolerance) {
-        options_.octree.tolerance = *overrides.tolerance;
-        options_.octree.minWidth = *overrides.tolerance;
-        options_.octree.autoTolerance = false;  // fixed, as `tolerance EPS` in the scene
+        options_.search.tolerance = *overrides.tolerance;
+        options_.search.minWidth = *overrides.tolerance;
+        options_.search.autoTolerance = false;  // fixed, as `tolerance EPS` in the scene
     }
     if (overrides.step) options_.marchStep = *overrides.step;
     for (const auto& [name, on] : overrides.switches) *OctreeSwitch(options_.octree, name) = on;

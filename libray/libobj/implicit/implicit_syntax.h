@@ -105,15 +105,16 @@ struct PropagationSpec {
     StatementPlace place;
 };
 
-// The block's settings as written, defaults for those omitted (the octree's from
-// OctreeSettings); `auto` is kept as such, for the builder to resolve.
+// The block's settings as written, defaults for those omitted (the numbers from
+// RootSearchSettings and OctreeHeuristics); `auto` is kept as such, for the builder to
+// resolve.
 struct BlockSettings {
     double threshold = 1;
     bool autoTolerance = true;
-    double tolerance = OctreeSettings().tolerance;  // `tolerance Eps`, when not auto
+    double tolerance = RootSearchSettings().tolerance;  // `tolerance Eps`, when not auto
     bool autoDepth = true;
-    int maxDepth = OctreeSettings().maxDepth;  // `octree MaxDepth`, when not auto
-    double dRatio = OctreeSettings().dRatio;
+    int maxDepth = OctreeHeuristics().maxDepth;  // `octree MaxDepth`, when not auto
+    double dRatio = OctreeHeuristics().dRatio;
     ImplicitMethod method = ImplicitMethod::Auto;
     double marchStep = 0;  // <= 0: the method's default
     bool autoContacts = false;  // `contact auto`

@@ -1,5 +1,5 @@
 // Layer 8 of the implicit module: method `kb89`, Kalra and Barr's search (1989): one LG
-// octree over the object's plain sum with their heuristics only (OctreeSettings::Kb89(),
+// octree over the object's plain sum with their heuristics only (OctreeHeuristics::Kb89(),
 // the declared depth), built by the first ray that needs it. No patches: hits carry no
 // owning term, blend and contact statements are ignored (README.md, "Methods").
 #pragma once

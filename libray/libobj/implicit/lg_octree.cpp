@@ -156,8 +156,8 @@ LeafListCache& LeafLists() {
 
 }  // namespace
 
-OctreeSettings OctreeSettings::Kb89() {
-    OctreeSettings s;
+OctreeHeuristics OctreeHeuristics::Kb89() {
+    OctreeHeuristics s;
     s.useValueRange = false;
     s.useHeuristic1bis = false;
     s.useHeuristic3bis = false;

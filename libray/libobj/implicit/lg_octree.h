@@ -7,7 +7,7 @@
 // directional derivative of F| (field.h). Along a ray p(t) = o + t·d the parametric bounds
 // are Lt = L|d| and Gt = G|d|², since d/dt = d·∇ and d²/dt² = dᵀ∇²F d.
 //
-// Build heuristics (in the order applied; each but 2 switchable in OctreeSettings):
+// Build heuristics (in the order applied; each but 2 switchable in OctreeHeuristics):
 //   range  (ours)  Bound's value interval excludes T  → Full/Empty. Sound: it contains F.
 //   1      |g(C)| > bL → Full/Empty by the sign of g(C). Sound: |F(p) − F(C)| <= L|p − C|.
 //   1bis   |g(C)| > b‖∇F(C)‖ + ½b²G → Full/Empty. Sound: Taylor along C→p with integral
@@ -75,10 +75,14 @@
 #include "libcommon/limits.h"
 #include "libcommon/ray.h"
 #include "libobj/implicit/patch.h"
+#include "libobj/implicit/root_finding.h"
 
 namespace rs {
 
-struct OctreeSettings {
+// How an LG octree is built and searched beyond the root accuracy: depth limits, Gascuel's
+// and Kalra & Barr's build heuristics, the memory budget, and the search tests. These are
+// the octree methods' own settings (patches, kb89); RootSearchSettings are every method's.
+struct OctreeHeuristics {
     // Octree depth limits (Gascuel's tables: max depth 4–10, min depth 3). minDepth is the
     // "deep enough" of heuristics 3 and 3bis. Measured on 60 blended point skeletons (the
     // research note's §12 parameters, 20 000 rays): min depth 2 / 3 / 4 / 5 gave 131 / 62 /
@@ -110,26 +114,7 @@ struct OctreeSettings {
     // merge (a long thin skeleton) could take unbounded time and memory to build.
     std::size_t memoryBudget = static_cast<std::size_t>(Limits().octreeBytes);
 
-    // Search. Root accuracy and splitting floor, as object-space distances.
-    double tolerance = 1e-7;
-    double minWidth = 1e-7;
-    // Automatic accuracy (the scene's `tolerance auto`): on a ray carrying a footprint
-    // (ray.h), the tolerance and the splitting floor within a leaf span are
-    // footprintFraction × the footprint's width at the span's nearer end (its smaller
-    // width), in units of t, but never finer than tolerance and minWidth above; on rays
-    // without a footprint, those fixed values. 1/8: the depth error then moves a hit point
-    // by at most an eighth of the pixel's width along the ray, invisible after projection
-    // (less than one eighth of a pixel on screen), and grazing contacts missed at the floor
-    // are narrower than an eighth of a pixel.
-    // The automatic values are also capped at autoToleranceCap (in units of t): the
-    // renderer starts reflected, refracted and shadow rays at hit points and skips only
-    // t < kEpsilon (1e-5) or kShadowEpsilon (4e-5) there, so a hit placed farther than
-    // that from the true surface would let those rays meet the surface they leave (shadow
-    // acne, doubled refraction). A tenth of kEpsilon keeps every spawned ray clear.
-    bool autoTolerance = false;
-    double footprintFraction = 0.125;
-    double autoToleranceCap = kEpsilon / 10;
-    int maxRiddersIterations = 60;
+    // The LG search tests (lg_search.cpp).
     bool useTest0bis = true;
     bool useTest1 = true;
     bool useTest2bis = true;
@@ -139,7 +124,15 @@ struct OctreeSettings {
     // The per-segment bounds stay on: KB89's G lacked the |f'|/r term, so it was never
     // infinite, while ours is near linear-kernel skeletons and without them the search
     // would split such spans down to the floor.
-    static OctreeSettings Kb89();
+    static OctreeHeuristics Kb89();
+};
+
+// What one tree is built with: the object's root search settings and the method's
+// heuristics.
+struct OctreeSettings : RootSearchSettings, OctreeHeuristics {
+    OctreeSettings() = default;
+    OctreeSettings(const RootSearchSettings& search, const OctreeHeuristics& heuristics)
+        : RootSearchSettings(search), OctreeHeuristics(heuristics) {}
 };
 
 // A leaf met by a ray: the parametric span [tEnter, tExit], the leaf's bounds and its

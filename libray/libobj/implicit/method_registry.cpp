@@ -26,7 +26,8 @@ std::unique_ptr<IntersectionMethod> MakePatches(const Field& whole,
 
 std::unique_ptr<IntersectionMethod> MakeKb89(const Field& whole, const ImplicitOptions& options,
                                              const ImplicitObjectStats& stats) {
-    return std::make_unique<Kb89Method>(whole, options.threshold, options.octree, stats);
+    return std::make_unique<Kb89Method>(whole, options.threshold,
+                                        OctreeSettings(options.search, options.octree), stats);
 }
 
 }  // namespace
@@ -48,23 +49,18 @@ const std::vector<MethodEntry>& MethodRegistry() {
 MethodParams BaselineParams(const ImplicitOptions& options) {
     MethodParams params;
     params.threshold = options.threshold;
-    params.tolerance = options.octree.tolerance;
+    params.tolerance = options.search.tolerance;
     params.step = options.marchStep;
     return params;
 }
 
-OctreeSettings MethodOctreeSettings(ImplicitMethod method, const OctreeSettings& declared,
-                                    double patchesDRatio) {
+OctreeHeuristics MethodOctreeHeuristics(ImplicitMethod method, int maxDepth,
+                                        double patchesDRatio) {
     const bool kb89 = method == ImplicitMethod::Kb89;
-    OctreeSettings s = kb89 ? OctreeSettings::Kb89() : OctreeSettings{};
-    s.maxDepth = declared.maxDepth;
-    if (!kb89) s.dRatio = patchesDRatio;
-    s.tolerance = declared.tolerance;
-    s.minWidth = declared.minWidth;
-    s.autoTolerance = declared.autoTolerance;
-    s.footprintFraction = declared.footprintFraction;
-    s.autoToleranceCap = declared.autoToleranceCap;
-    return s;
+    OctreeHeuristics h = kb89 ? OctreeHeuristics::Kb89() : OctreeHeuristics{};
+    h.maxDepth = maxDepth;
+    if (!kb89) h.dRatio = patchesDRatio;
+    return h;
 }
 
 const MethodEntry& MethodEntryOf(ImplicitMethod method) {

@@ -30,11 +30,10 @@ struct MethodEntry {
 // `options`.
 MethodParams BaselineParams(const ImplicitOptions& options);
 
-// The octree settings of `method` (kb89's heuristics for kb89, the patches defaults
-// otherwise, unused by the baselines), keeping the declared depth and tolerance of
-// `declared` and, but for kb89, the declared Dratio.
-OctreeSettings MethodOctreeSettings(ImplicitMethod method, const OctreeSettings& declared,
-                                    double patchesDRatio);
+// The octree heuristics of `method` (kb89's for kb89, the patches defaults otherwise, unused
+// by the baselines) with the declared maximum depth and, but for kb89, the declared Dratio.
+OctreeHeuristics MethodOctreeHeuristics(ImplicitMethod method, int maxDepth,
+                                        double patchesDRatio);
 
 // Every method, in the order of ImplicitMethod.
 const std::vector<MethodEntry>& MethodRegistry();

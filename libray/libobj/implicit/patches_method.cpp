@@ -44,7 +44,7 @@ int PatchesMethod::AutoMinDepth(const Patch& patch, double threshold) {
 PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
                              const ImplicitObjectStats& stats)
     : threshold_(options.threshold),
-      settings_(options.octree),
+      settings_(options.search, options.octree),
       autoDepth_(options.autoDepth),
       stats_(stats) {
     std::vector<std::pair<int, int>> separate;

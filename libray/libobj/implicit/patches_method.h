@@ -4,9 +4,9 @@
 // one LG octree per patch, built by the first ray reaching the patch (LazyOctree), and a
 // bounding volume hierarchy over the patch boxes that rays walk front to back.
 //
-// The octree settings are the object's (OctreeSettings: search tolerance and build
-// heuristics), with each patch's depth chosen from its own skeleton under `octree auto`
-// (AutoMinDepth). Objects with contacts build every tree at once (the contacts measure
+// The octree settings are the object's (its RootSearchSettings and OctreeHeuristics), with
+// each patch's depth chosen from its own skeleton under `octree auto` (AutoMinDepth).
+// Objects with contacts build every tree at once (the contacts measure
 // with them); the others build each tree lazily.
 #pragma once
 

@@ -18,7 +18,35 @@
 #include <optional>
 #include <utility>
 
+#include "libcommon/constants.h"
+
 namespace rs {
+
+// How accurately every intersection method places a root along a ray (the block's
+// `tolerance`), whatever the method: the baselines use `tolerance`, the octree methods all
+// of it (OctreeSettings).
+struct RootSearchSettings {
+    // Root accuracy and splitting floor, as object-space distances.
+    double tolerance = 1e-7;
+    double minWidth = 1e-7;
+    // Automatic accuracy (the scene's `tolerance auto`): on a ray carrying a footprint
+    // (ray.h), the tolerance and the splitting floor within a leaf span are
+    // footprintFraction × the footprint's width at the span's nearer end (its smaller
+    // width), in units of t, but never finer than tolerance and minWidth above; on rays
+    // without a footprint, those fixed values. 1/8: the depth error then moves a hit point
+    // by at most an eighth of the pixel's width along the ray, invisible after projection
+    // (less than one eighth of a pixel on screen), and grazing contacts missed at the floor
+    // are narrower than an eighth of a pixel.
+    // The automatic values are also capped at autoToleranceCap (in units of t): the
+    // renderer starts reflected, refracted and shadow rays at hit points and skips only
+    // t < kEpsilon (1e-5) or kShadowEpsilon (4e-5) there, so a hit placed farther than
+    // that from the true surface would let those rays meet the surface they leave (shadow
+    // acne, doubled refraction). A tenth of kEpsilon keeps every spawned ray clear.
+    bool autoTolerance = false;
+    double footprintFraction = 0.125;
+    double autoToleranceCap = kEpsilon / 10;
+    int maxRiddersIterations = 60;
+};
 
 struct RootResult {
     double root = 0;

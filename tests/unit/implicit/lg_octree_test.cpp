@@ -60,7 +60,7 @@ TEST(LGOctree, PointSkeletonIsSphereOfRadiusE) {
         for (bool kb89 : {false, true}) {
             Vec3 c{0.2, -0.1, 0.3};
             Scene scene({{"p", PointSkeleton{c}, k, 1}}, 1.0,
-                        kb89 ? OctreeSettings::Kb89() : OctreeSettings{});
+                        kb89 ? OctreeSettings({}, OctreeHeuristics::Kb89()) : OctreeSettings{});
             for (uint64_t seed = 1; seed <= 200; ++seed) {
                 Rng rng(seed);
                 Vec3 o = c + RandomUnit(rng) * Uniform(rng, 2, 6);
@@ -452,7 +452,7 @@ TEST(LGOctree, EverySwitchPreservesTheFirstHits) {
     variants[9].useTest1 = false;
     variants[10].useTest2bis = false;
     variants[11].useTest3 = false;
-    variants[12] = OctreeSettings::Kb89();
+    variants[12] = OctreeSettings({}, OctreeHeuristics::Kb89());
     variants[13].maxDepth = 0;
     std::vector<Scene> scenes;
     for (const OctreeSettings& s : variants) scenes.emplace_back(terms, 1.0, s);

@@ -33,7 +33,7 @@ std::unique_ptr<IntersectionMethod> Make(ImplicitMethod method, const Field& fie
     static const ImplicitObjectStats stats;
     ImplicitOptions options;
     options.threshold = threshold;
-    options.octree.tolerance = tolerance;
+    options.search.tolerance = tolerance;
     options.marchStep = step;
     return MethodEntryOf(method).create(field, options, stats);
 }
@@ -415,7 +415,7 @@ TEST(ImplicitMethods, EveryFactoryMakesAWorkingMethod) {
         ImplicitOptions options;
         options.method = e.method;
         options.threshold = 0.5625;
-        if (e.method == ImplicitMethod::Kb89) options.octree = OctreeSettings::Kb89();
+        if (e.method == ImplicitMethod::Kb89) options.octree = OctreeHeuristics::Kb89();
         ASSERT_TRUE(!e.check || e.check(field.Terms()).empty()) << e.name;
         std::unique_ptr<IntersectionMethod> method = e.create(field, options, stats);
         ASSERT_TRUE(method) << e.name;
