@@ -15,6 +15,9 @@ namespace rs {
 
 enum class ImplicitMethod { Patches, Kb89, March, Sphere, Segment, Polynomial, Exact, Auto };
 
+// The member initializers (and those of RootSearchSettings and OctreeHeuristics) are the
+// scene's defaults, the one table of them: the block reader starts from them
+// (BlockSettings) and docs/implicit-reference.md documents them.
 struct ImplicitOptions {
     double threshold = 1;
     // Every method's root accuracy.
@@ -22,11 +25,12 @@ struct ImplicitOptions {
     // The octree methods' heuristics (kb89's or the patches', MethodOctreeHeuristics).
     OctreeHeuristics octree;
     // Gascuel's Dratio as declared, restored when the method becomes Patches again.
-    double patchesDRatio = 2;
+    double patchesDRatio = OctreeHeuristics().dRatio;
     // `octree auto`: each patch's octree depth from its own skeleton's thickness
     // (PatchesMethod); otherwise octree.minDepth and maxDepth.
-    bool autoDepth = false;
-    ImplicitMethod method = ImplicitMethod::Patches;
+    bool autoDepth = true;
+    // Auto until ChooseMethod resolves it (a primitive is made with a resolved method).
+    ImplicitMethod method = ImplicitMethod::Auto;
     // The march step (object-space distance); <= 0: DefaultMarchStep.
     double marchStep = 0;
     // The declared blend graph; used only in patches mode.

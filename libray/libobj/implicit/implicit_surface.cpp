@@ -19,6 +19,12 @@ bool ImplicitSurface::IsBlockWord(const std::string& word) {
 
 ImplicitSurface::ImplicitSurface(std::vector<FieldTerm> terms, ImplicitOptions options)
     : options_(std::move(options)), whole_(std::move(terms)) {
+    if (options_.method == ImplicitMethod::Auto) {
+        // `auto` always yields a method that serves the terms: there is no error to report.
+        const std::string error =
+            ChooseMethod(ImplicitMethod::Auto, Terms(), options_, options_.method);
+        static_cast<void>(error);
+    }
     Build();
 }
 

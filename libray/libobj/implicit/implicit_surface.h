@@ -26,8 +26,8 @@ namespace rs {
 
 class ImplicitSurface final : public Primitive {
   public:
-    // Terms must have valid kernels (Kernel::Validate) and threshold > 0; the method must
-    // not be Auto.
+    // Terms must have valid kernels (Kernel::Validate) and threshold > 0, and the method
+    // must serve them (ChooseMethod); Auto, the default, is resolved by ChooseMethod here.
     ImplicitSurface(std::vector<FieldTerm> terms, ImplicitOptions options);
 
     // Reads the block syntax (implicit_syntax.h); fails (located, with usage) on malformed

@@ -15,6 +15,7 @@
 #include "libcommon/arg_reader.h"
 #include "libcommon/large_buffer.h"
 #include "libcommon/name_index.h"
+#include "libobj/implicit/implicit_options.h"
 #include "libobj/implicit/kernel.h"
 #include "libobj/implicit/lg_octree.h"
 #include "libobj/implicit/method_registry.h"
@@ -105,19 +106,19 @@ struct PropagationSpec {
     StatementPlace place;
 };
 
-// The block's settings as written, defaults for those omitted (the numbers from
-// RootSearchSettings and OctreeHeuristics); `auto` is kept as such, for the builder to
+// The block's settings as written, the defaults (ImplicitOptions and the settings it holds:
+// the one table of them) for those omitted; `auto` is kept as such, for the builder to
 // resolve.
 struct BlockSettings {
-    double threshold = 1;
-    bool autoTolerance = true;
+    double threshold = ImplicitOptions().threshold;
+    bool autoTolerance = RootSearchSettings().autoTolerance;
     double tolerance = RootSearchSettings().tolerance;  // `tolerance Eps`, when not auto
-    bool autoDepth = true;
+    bool autoDepth = ImplicitOptions().autoDepth;
     int maxDepth = OctreeHeuristics().maxDepth;  // `octree MaxDepth`, when not auto
     double dRatio = OctreeHeuristics().dRatio;
-    ImplicitMethod method = ImplicitMethod::Auto;
-    double marchStep = 0;  // <= 0: the method's default
-    bool autoContacts = false;  // `contact auto`
+    ImplicitMethod method = ImplicitOptions().method;
+    double marchStep = ImplicitOptions().marchStep;  // <= 0: the method's default
+    bool autoContacts = ImplicitOptions().autoContacts;  // `contact auto`
     StatementPlace methodPlace;  // the `method` statement (line 0: none)
 };
 

@@ -42,7 +42,7 @@ struct RootSearchSettings {
     // t < kEpsilon (1e-5) or kShadowEpsilon (4e-5) there, so a hit placed farther than
     // that from the true surface would let those rays meet the surface they leave (shadow
     // acne, doubled refraction). A tenth of kEpsilon keeps every spawned ray clear.
-    bool autoTolerance = false;
+    bool autoTolerance = true;
     double footprintFraction = 0.125;
     double autoToleranceCap = kEpsilon / 10;
     int maxRiddersIterations = 60;
