@@ -86,11 +86,24 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
             stats_.CountTree(*trees_[i].Built());
         }
     }
+    if (contacts.empty()) {
+        cellStore_ = std::make_unique<LazyCellStore>(kCellBudgetTrees * settings_.memoryBudget,
+                                                     &stats_);
+    }
     bvhOrder_.resize(patches_.size());
     for (size_t i = 0; i < patches_.size(); ++i) bvhOrder_[i] = static_cast<int>(i);
     if (!patches_.empty()) {
+        // The boxes and centres in arrays of their own: the build reads them over and over.
+        std::vector<Bounds3> boxes;
+        std::vector<Vec3> centres;
+        boxes.reserve(patches_.size());
+        centres.reserve(patches_.size());
+        for (const Patch& p : patches_) {
+            boxes.push_back(p.Box());
+            centres.push_back(p.Box().Center());
+        }
         bvh_.emplace_back();
-        BuildBvh(0, 0, static_cast<int>(patches_.size()));
+        BuildBvh(0, 0, static_cast<int>(patches_.size()), boxes, centres);
     }
 }
 
@@ -106,18 +119,19 @@ OctreeSettings PatchesMethod::PatchSettings(const Patch& patch) const {
 const LGOctree& PatchesMethod::Tree(int i) const {
     return trees_[i].Get([this, i] {
         return stats_.BuildTree([this, i] {
-            return BuildPatchOctree(patches_[i], threshold_, PatchSettings(patches_[i]));
+            return BuildPatchOctree(patches_[i], threshold_, PatchSettings(patches_[i]),
+                                    cellStore_.get());
         });
     });
 }
 
-// Fills node `index` over the entries [first, first + count) of bvhOrder_, splitting them
-// at the median along the longest axis of their boxes' centres.
-void PatchesMethod::BuildBvh(int index, int first, int count) {
-    Bounds3 box, centres;
+// Splits the entries at the median along the longest axis of their boxes' centres.
+void PatchesMethod::BuildBvh(int index, int first, int count, const std::vector<Bounds3>& boxes,
+                             const std::vector<Vec3>& centres) {
+    Bounds3 box, centreBox;
     for (int i = first; i < first + count; ++i) {
-        box.Extend(patches_[bvhOrder_[i]].Box());
-        centres.Extend(patches_[bvhOrder_[i]].Box().Center());
+        box.Extend(boxes[bvhOrder_[i]]);
+        centreBox.Extend(centres[bvhOrder_[i]]);
     }
     bvh_[index].box = box;
     if (count <= kBvhLeafSize) {
@@ -125,11 +139,11 @@ void PatchesMethod::BuildBvh(int index, int first, int count) {
         bvh_[index].count = count;
         return;
     }
-    Vec3 extent = centres.Extent();
+    Vec3 extent = centreBox.Extent();
     int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     auto begin = bvhOrder_.begin() + first;
     std::nth_element(begin, begin + count / 2, begin + count, [&](int a, int b) {
-        double ca = patches_[a].Box().Center()[axis], cb = patches_[b].Box().Center()[axis];
+        double ca = centres[a][axis], cb = centres[b][axis];
         return ca < cb || (ca == cb && a < b);
     });
     // Children are allocated as a consecutive pair so one index addresses both.
@@ -137,8 +151,8 @@ void PatchesMethod::BuildBvh(int index, int first, int count) {
     bvh_.emplace_back();
     bvh_.emplace_back();
     bvh_[index].left = left;
-    BuildBvh(left, first, count / 2);
-    BuildBvh(left + 1, first + count / 2, count - count / 2);
+    BuildBvh(left, first, count / 2, boxes, centres);
+    BuildBvh(left + 1, first + count / 2, count - count / 2, boxes, centres);
 }
 
 std::optional<double> PatchesMethod::FirstRoot(const Ray& ray, double tMin, double tMax) const {
