@@ -263,6 +263,16 @@ std::size_t LGOctree::MemoryBytes() const {
            (leaves_.size() + buildLeaves_.size()) * sizeof(Leaf) + terms_.size() * sizeof(int32_t);
 }
 
+int LGOctree::InternalCount() const {
+    return lazy_ ? static_cast<int>((lazy_->root.classes >> 16) & 1) : internalCount_;
+}
+
+int LGOctree::LeafCount() const {
+    if (!lazy_) return static_cast<int>(leaves_.size());
+    const uint32_t classes = lazy_->root.classes;
+    return static_cast<int>(classes & 1 & ~(classes >> 16));
+}
+
 bool LGOctree::Degraded() const {
     return lazy_ ? lazy_->degraded.load(std::memory_order_relaxed) : degraded_;
 }

@@ -272,9 +272,9 @@ class LGOctree {
                                     const RootFilter& accept = {}) const;
 
     // The cells and memory of a whole tree; in per-cell mode, those kept at construction
-    // (none: the store's observer is told of the cells kept later).
-    int InternalCount() const { return internalCount_; }
-    int LeafCount() const { return static_cast<int>(leaves_.size()); }
+    // (the root cell; the store's observer is told of the cells kept later).
+    int InternalCount() const;
+    int LeafCount() const;
     std::size_t MemoryBytes() const;
     // True when the memory budget stopped subdivision somewhere (per-cell mode: when the
     // store's budget refused some cells).
