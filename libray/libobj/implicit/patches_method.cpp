@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rs {
 
@@ -87,8 +88,10 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
         }
     }
     if (contacts.empty()) {
-        cellStore_ = std::make_unique<LazyCellStore>(kCellBudgetTrees * settings_.memoryBudget,
-                                                     &stats_);
+        const std::size_t perTree = std::min(settings_.memoryBudget,
+                                             std::numeric_limits<std::size_t>::max() /
+                                                 kCellBudgetTrees);  // no overflow
+        cellStore_ = std::make_unique<LazyCellStore>(kCellBudgetTrees * perTree, &stats_);
     }
     bvhOrder_.resize(patches_.size());
     for (size_t i = 0; i < patches_.size(); ++i) bvhOrder_[i] = static_cast<int>(i);
