@@ -128,12 +128,12 @@ TEST(LazyCells, CoarseDescentStaysWithinTolerance) {
     const Kernel k = Kernel::GascuelQuadratic(0.5, 2, 1.2);
     Field field({{"p", PointSkeleton{c}, k, 1}});
     OctreeSettings s = AutoAccuracy();
-    LazyCellStore store(1u << 30);
-    const LGOctree tree(field, 1.0, field.SupportBounds(), s, -1, &store);
     for (double spread : {0.0, 1e-3, 0.05, 0.5}) {
+        LazyCellStore store(1u << 30);
+        const LGOctree tree(field, 1.0, field.SupportBounds(), s, -1, &store);
         for (uint64_t seed = 1; seed <= 200; ++seed) {
             Rng rng(seed);
-            Ray ray{c + RandomUnit(rng) * Uniform(rng, 2, 6), {0, 0, 1}};
+            Ray ray{c + RandomUnit(rng) * Uniform(rng, 3, 6), {0, 0, 1}};
             ray.dir = Normalize(c + RandomPoint(rng, -0.6, 0.6) - ray.origin);
             ray.footprintSpread = spread;
             const Vec3 oc = ray.origin - c;
@@ -144,6 +144,14 @@ TEST(LazyCells, CoarseDescentStaysWithinTolerance) {
                 EXPECT_NEAR(*got, -b - std::sqrt(disc), s.autoToleranceCap)
                     << "spread " << spread << " seed " << seed;
             }
+        }
+        // The rays start at least 0.9 from the 2.4-wide root box (corners at 2.08 from c):
+        // with spread 0.5 their footprints there are over 0.45 wide, and 8 of them exceed the
+        // root, so no ray descends and no cell is expanded; narrower ones descend.
+        if (spread == 0.5) {
+            EXPECT_EQ(store.UsedBytes(), 0u);
+        } else {
+            EXPECT_GT(store.UsedBytes(), 0u) << "spread " << spread;
         }
     }
 }
