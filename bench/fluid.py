@@ -13,8 +13,10 @@ implicit evaluations per ray (field + gradient + bound, over every eye and shado
 builds excluded), octree cells built and kept, octree memory and the process's peak resident
 memory. Then a sample of eye rays through random pixels is answered by rayquery with the
 default method and with `-m exact` (the long-double ground truth): misses (exact hits,
-default does not), false hits and the largest depth error, against the tolerance (rays
-without a footprint use the fixed 1e-7).
+default does not), false hits and the largest depth error, against the tolerance: once
+without a footprint (the fixed 1e-7, and per-cell trees descend to their full depth) and
+once with the pixel's footprint as the render's eye rays carry it (rayquery -f: the
+automatic tolerance, at most 1e-6, and the coarse descent of per-cell trees).
 
 With --blob the same table follows for the blob kernel (s = 1, R = 1, threshold 0.6, the
 shared chains' field, on the kit's own chains where it has them) under `method patches`,
@@ -42,6 +44,10 @@ REPO = os.path.dirname(HERE)
 WIDTH = HEIGHT = 512
 FOV = 45.0
 TOLERANCE = 1e-7  # the fixed tolerance of `tolerance auto` on rays without a footprint
+AUTO_TOLERANCE_CAP = 1e-6  # its largest value on rays with a footprint (lg_octree.h)
+# The eye rays' footprint spread: a pixel's angular size on the axis (the camera's
+# min(|dx|, |dy|)·cos θ/ℓ is at most this).
+PIXEL_SPREAD = 2 * math.tan(math.radians(FOV / 2)) / WIDTH
 
 
 def gascuel_scene(pts, plane=True):
@@ -121,9 +127,11 @@ def query(rayquery, scene_path, rays, extra):
             for line in out if line.strip()]
 
 
-def check(rayquery, scene_path, pts, count):
+def check(rayquery, scene_path, pts, count, extra):
+    """Misses, false hits, the largest depth error and the exact hits of the default method
+    (with `extra` options) against -m exact."""
     rays = eye_rays(pts, count, 7 + len(pts))
-    got = query(rayquery, scene_path, rays, [])
+    got = query(rayquery, scene_path, rays, extra)
     want = query(rayquery, scene_path, rays, ["-m", "exact"])
     misses = sum(1 for g, e in zip(got, want) if e is not None and g is None)
     false_hits = sum(1 for g, e in zip(got, want) if e is None and g is not None)
@@ -155,8 +163,8 @@ def main():
               "default method" % args.threads)
         print("| points | wall s | CPU s | build CPU s | rest CPU s | evals/ray | cells built |"
               " cells kept | octree MiB | peak MiB | check: rays hit | misses | false hits |"
-              " max depth error |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+              " max depth error | with footprint: misses | false hits | max depth error |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         per_ray = {}
         for n in sizes:
             pts = chains.walk(n, 1000 + n)
@@ -166,14 +174,17 @@ def main():
             r = render(binary, path, work, "fluid_%d" % n, args.threads)
             per_ray[n] = r["cpu"]
             if args.no_check:
-                agreement = "| - | - | - | - |"
+                agreement = "| - | - | - | - | - | - | - |"
             else:
                 bare = os.path.join(work, "fluid_%d_check.ray" % n)
                 with open(bare, "w") as fh:
                     fh.write(gascuel_scene(pts, plane=False))
-                misses, false_hits, worst, hits = check(rayquery, bare, pts, args.rays)
-                agreement = "| %d/%d | %d | %d | %.1e (tol %.0e) |" % (
-                    hits, args.rays, misses, false_hits, worst, TOLERANCE)
+                misses, false_hits, worst, hits = check(rayquery, bare, pts, args.rays, [])
+                fmisses, ffalse, fworst, _ = check(rayquery, bare, pts, args.rays,
+                                                   ["-f", repr(PIXEL_SPREAD)])
+                agreement = "| %d/%d | %d | %d | %.1e (tol %.0e) | %d | %d | %.1e (tol <= %.0e) |" % (
+                    hits, args.rays, misses, false_hits, worst, TOLERANCE, fmisses, ffalse,
+                    fworst, AUTO_TOLERANCE_CAP)
             print("| %d | %.2f | %.2f | %.2f | %.2f | %.1f | %d | %d | %.1f | %.0f %s"
                   % (n, r["wall"], r["cpu"], r["build"], r["rest"], r["evals"], r["built"],
                      r["kept"], r["octree"], r["peak"], agreement), flush=True)

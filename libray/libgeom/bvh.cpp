@@ -21,11 +21,15 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
     for (size_t i = 0; i < boxes.size(); ++i) items_[i] = static_cast<int>(i);
     if (boxes.empty()) return;
     nodes_.reserve(2 * boxes.size());
-    BuildNode(items_, 0, static_cast<int>(items_.size()), boxes, split, 0);
+    // The centres in an array of their own: every level of the build reads them.
+    BuildInput input{boxes, {}};
+    input.centres.reserve(boxes.size());
+    for (const Bounds3& b : boxes) input.centres.push_back(b.Center());
+    BuildNode(items_, 0, static_cast<int>(items_.size()), input, split, 0);
 }
 
 int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, int end,
-                                          const std::vector<Bounds3>& boxes, const Bounds3& box,
+                                          const BuildInput& input, const Bounds3& box,
                                           const Bounds3& centroids, int& axis) {
     constexpr int kBins = 16;
     const int count = end - begin;
@@ -36,7 +40,7 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     const double area = HalfArea(box);
     const Vec3 cLo = centroids.lo, cExtent = centroids.Extent();
     const auto binOf = [&](int item, int a) {
-        const int b = static_cast<int>(kBins * (boxes[item].Center()[a] - cLo[a]) / cExtent[a]);
+        const int b = static_cast<int>(kBins * (input.centres[item][a] - cLo[a]) / cExtent[a]);
         return b < 0 ? 0 : (b >= kBins ? kBins - 1 : b);
     };
     for (int a = 0; a < 3; ++a) {
@@ -46,7 +50,7 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
         for (int i = begin; i < end; ++i) {
             const int b = binOf(items[i], a);
             ++binCount[b];
-            binBox[b].Extend(boxes[items[i]]);
+            binBox[b].Extend(input.boxes[items[i]]);
         }
         // rightCost[k]: A·N of bins k.. (the right part when splitting before bin k).
         double rightCost[kBins];
@@ -79,13 +83,13 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
 }
 
 int BoundingVolumeHierarchy::BuildNode(std::vector<int>& items, int begin, int end,
-                                       const std::vector<Bounds3>& boxes, Split split, int depth) {
+                                       const BuildInput& input, Split split, int depth) {
     const int index = static_cast<int>(nodes_.size());
     nodes_.emplace_back();
     Bounds3 box, centroids;
     for (int i = begin; i < end; ++i) {
-        box.Extend(boxes[items[i]]);
-        centroids.Extend(boxes[items[i]].Center());
+        box.Extend(input.boxes[items[i]]);
+        centroids.Extend(input.centres[items[i]]);
     }
     nodes_[index].box = box;
     const auto leaf = [&] {
@@ -98,7 +102,7 @@ int BoundingVolumeHierarchy::BuildNode(std::vector<int>& items, int begin, int e
     int mid = kSahMedian;
     if (split == Split::SurfaceArea && depth < kMaxSahDepth) {
         if (end - begin <= 1) return leaf();
-        mid = SahPartition(items, begin, end, boxes, box, centroids, axis);
+        mid = SahPartition(items, begin, end, input, box, centroids, axis);
         if (mid == kSahLeaf) return leaf();
     } else if (end - begin <= kLeafSize) {
         return leaf();
@@ -109,12 +113,12 @@ int BoundingVolumeHierarchy::BuildNode(std::vector<int>& items, int begin, int e
                          [&](int a, int b) {
                              // Ties broken by item, so which items go to each half
                              // does not depend on the standard library.
-                             const double ca = boxes[a].Center()[axis], cb = boxes[b].Center()[axis];
+                             const double ca = input.centres[a][axis], cb = input.centres[b][axis];
                              return ca < cb || (ca == cb && a < b);
                          });
     }
-    BuildNode(items, begin, mid, boxes, split, depth + 1);
-    int right = BuildNode(items, mid, end, boxes, split, depth + 1);
+    BuildNode(items, begin, mid, input, split, depth + 1);
+    int right = BuildNode(items, mid, end, input, split, depth + 1);
     nodes_[index].right = right;
     nodes_[index].axis = axis;
     return index;

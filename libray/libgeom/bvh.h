@@ -151,14 +151,19 @@ class BoundingVolumeHierarchy {
         int axis = 0;
     };
 
-    int BuildNode(std::vector<int>& items, int begin, int end, const std::vector<Bounds3>& boxes,
+    // The items' boxes and their centres, by item.
+    struct BuildInput {
+        const std::vector<Bounds3>& boxes;
+        std::vector<Vec3> centres;
+    };
+    int BuildNode(std::vector<int>& items, int begin, int end, const BuildInput& input,
                   Split split, int depth);
     // The SAH split of items[begin, end) (centroid bounds `centroids`, node box `box`): when
     // a split pays, partitions the items, sets `axis` and returns the first of the right
     // part; otherwise returns kSahLeaf, or kSahMedian when there are too many for a leaf.
     static constexpr int kSahLeaf = -1, kSahMedian = -2;
     static int SahPartition(std::vector<int>& items, int begin, int end,
-                            const std::vector<Bounds3>& boxes, const Bounds3& box,
+                            const BuildInput& input, const Bounds3& box,
                             const Bounds3& centroids, int& axis);
 
     std::vector<Node> nodes_;

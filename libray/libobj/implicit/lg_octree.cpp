@@ -170,19 +170,55 @@ OctreeHeuristics OctreeHeuristics::Kb89() {
     return s;
 }
 
+bool LazyCellStore::Reserve(std::size_t bytes) {
+    std::size_t used = used_.load(std::memory_order_relaxed);
+    do {
+        if (used + bytes > budget_) {
+            if (!degraded_.exchange(true, std::memory_order_relaxed)) {
+                Report(Severity::Warn, {},
+                       "implicit octree: memory budget of %zu bytes for the object's cells "
+                       "reached; further cells are recomputed by each ray (slower, same "
+                       "results)",
+                       budget_);
+            }
+            return false;
+        }
+    } while (!used_.compare_exchange_weak(used, used + bytes, std::memory_order_relaxed));
+    return true;
+}
+
+LGOctree::LGOctree(LGOctree&&) noexcept = default;
+LGOctree& LGOctree::operator=(LGOctree&&) noexcept = default;
+LGOctree::~LGOctree() = default;
+
 LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
-                   const OctreeSettings& settings, int ownTerm)
+                   const OctreeSettings& settings, int ownTerm, LazyCellStore* lazy)
     : field_(std::move(field)),
       threshold_(threshold),
       ownTerm_(ownTerm),
       box_(box),
       settings_(settings) {
     if (box_.IsEmpty()) return;
+    const Vec3 extent = box_.Extent();
+    leafPadding_ = kLeafBoxPadding * std::max({extent.x, extent.y, extent.z});
+    if (lazy) {
+        lazy_ = std::make_unique<LazyTree>();
+        lazy_->store = lazy;
+        std::vector<int32_t> terms;
+        field_.TermsMeeting(box_.Padded(leafPadding_), field_.Rows(), terms);
+        FieldBound fb;
+        const Decision decision =
+            Decide(box_, 0, {0, 0, 0}, terms, fb, [&](const Vec3& p, LatticePoint) {
+                return field_.Value(p, terms);
+            });
+        const ChildPlan root{0, box_, decision, fb.L, fb.G, &terms};
+        FillLazyBlock(lazy_->root, {&root, 1});
+        if (lazy_->root.classes & 1) leafBox_ = box_.Padded(leafPadding_);
+        return;
+    }
     LatticeTable().Clear();
     // Build into this thread's reusable arrays (no regrowth per tree), then keep copies of
     // exactly the nodes built (no spare capacity).
-    const Vec3 extent = box_.Extent();
-    leafPadding_ = kLeafBoxPadding * std::max({extent.x, extent.y, extent.z});
     thread_local std::vector<Ref> nodeScratch;
     thread_local std::vector<BuildLeaf> leafScratch;
     thread_local std::vector<int32_t> termScratch;
@@ -209,7 +245,6 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
         leaves_.push_back({UpperFloat(leaf.L), UpperFloat(leaf.G), leaf.firstTerm, leaf.termCount});
     }
     terms_.assign(termScratch.begin(), termScratch.end());
-    std::vector<TermValueRange>().swap(termRanges_);
     ExtendLeafBox(root_, box_);
     if (!leafBox_.IsEmpty()) leafBox_ = leafBox_.Padded(leafPadding_);
     if (degraded_) {
@@ -223,8 +258,23 @@ LGOctree::LGOctree(Field field, double threshold, const Bounds3& box,
 // During the build the leaves are in buildLeaves_, afterwards in leaves_ (one of the two is
 // empty); either way each costs a final Leaf.
 std::size_t LGOctree::MemoryBytes() const {
+    if (lazy_) return lazy_->root.Bytes() + lazy_->bytes.load(std::memory_order_relaxed);
     return nodes_.size() * sizeof(Ref) +
            (leaves_.size() + buildLeaves_.size()) * sizeof(Leaf) + terms_.size() * sizeof(int32_t);
+}
+
+int LGOctree::InternalCount() const {
+    return lazy_ ? static_cast<int>((lazy_->root.classes >> 16) & 1) : internalCount_;
+}
+
+int LGOctree::LeafCount() const {
+    if (!lazy_) return static_cast<int>(leaves_.size());
+    const uint32_t classes = lazy_->root.classes;
+    return static_cast<int>(classes & 1 & ~(classes >> 16));
+}
+
+bool LGOctree::Degraded() const {
+    return lazy_ ? lazy_->degraded.load(std::memory_order_relaxed) : degraded_;
 }
 
 float UpperFloat(double x) {
@@ -326,39 +376,36 @@ double LGOctree::LatticeValue(const Vec3& p, LatticePoint q, std::span<const int
     return *slot;
 }
 
-LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
-                              std::span<const int32_t> parentTerms) {
+template <class Value>
+LGOctree::Decision LGOctree::Decide(const Bounds3& box, int depth, LatticePoint low,
+                                    std::span<const int32_t> terms, FieldBound& fb,
+                                    Value&& value) const {
     const OctreeCounters& c = Counters();
     Count(c.cellsBuilt);
     const OctreeSettings& s = settings_;
-    // This cell's rows, in a per-depth slot of cellTerms_ (children fill deeper slots, so
-    // the list stays valid until this call returns; the slots exist before the build).
-    std::vector<int32_t>& terms = cellTerms_[depth];
-    terms.clear();
-    field_.TermsMeeting(box.Padded(leafPadding_), parentTerms, terms);
     const bool predominance = s.usePredominancePruning && ownTerm_ >= 0;
-    FieldBound fb = field_.Bound(box, terms, predominance ? &termRanges_ : nullptr);
+    thread_local std::vector<TermValueRange> termRanges;  // the predominance test's
+    fb = field_.Bound(box, terms, predominance ? &termRanges : nullptr);
     if (s.useValueRange) {
         if (fb.valueMin > threshold_) {
             Count(c.rangeFired);
-            return kFullRef;
+            return Decision::Full;
         }
         if (fb.valueMax < threshold_) {
             Count(c.rangeFired);
-            return kEmptyRef;
+            return Decision::Empty;
         }
     }
-    if (predominance && !OwnMayPredominate(terms, termRanges_)) {
+    if (predominance && !OwnMayPredominate(terms, termRanges)) {
         Count(c.patchFired);
-        return kEmptyRef;
+        return Decision::Empty;
     }
     Vec3 centre = box.Center();
     double b = HalfDiagonal(box);
     // The cell's edge in lattice steps (>= 2 down to maxDepth), and its centre's point.
     const uint32_t edge = 1u << (s.maxDepth + 1 - depth), half = edge / 2;
-    double gc =
-        LatticeValue(centre, {low.x + half, low.y + half, low.z + half}, terms) - threshold_;
-    Ref mark = gc > 0 ? kFullRef : kEmptyRef;
+    double gc = value(centre, LatticePoint{low.x + half, low.y + half, low.z + half}) - threshold_;
+    const Decision mark = gc > 0 ? Decision::Full : Decision::Empty;
     if (s.useHeuristic1 && std::abs(gc) > b * fb.L) {
         Count(c.h1Fired);
         return mark;
@@ -374,7 +421,7 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
     }
     if (depth >= s.maxDepth) {
         Count(c.h2Fired);
-        return MakeLeaf(box, fb.L, fb.G, terms);
+        return Decision::Leaf;
     }
     // Heuristics 3 and 3bis stop early only where G is finite: a leaf with infinite G would
     // leave the search no curvature bound at all.
@@ -384,20 +431,46 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
             for (int i = 0; i < 8 && !(anyIn && anyOut); ++i) {
                 LatticePoint q{low.x + ((i & 1) ? edge : 0), low.y + ((i & 2) ? edge : 0),
                                low.z + ((i & 4) ? edge : 0)};
-                bool in = LatticeValue(box.Corner(i), q, terms) > threshold_;
+                bool in = value(box.Corner(i), q) > threshold_;
                 anyIn |= in;
                 anyOut |= !in;
             }
             if (anyIn && anyOut) {
                 Count(c.h3Fired);
-                return MakeLeaf(box, fb.L, fb.G, terms);
+                return Decision::Leaf;
             }
         }
         if (s.useHeuristic3bis && fb.minDistance > 0 && b / fb.minDistance < s.dRatio) {
             Count(c.h3bisFired);
-            return MakeLeaf(box, fb.L, fb.G, terms);
+            return Decision::Leaf;
         }
     }
+    return Decision::Subdivide;
+}
+
+LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
+                              std::span<const int32_t> parentTerms) {
+    const OctreeCounters& c = Counters();
+    const OctreeSettings& s = settings_;
+    // This cell's rows, in a per-depth slot of cellTerms_ (children fill deeper slots, so
+    // the list stays valid until this call returns; the slots exist before the build).
+    std::vector<int32_t>& terms = cellTerms_[depth];
+    terms.clear();
+    field_.TermsMeeting(box.Padded(leafPadding_), parentTerms, terms);
+    FieldBound fb;
+    switch (Decide(box, depth, low, terms, fb, [&](const Vec3& p, LatticePoint q) {
+        return LatticeValue(p, q, terms);
+    })) {
+        case Decision::Empty:
+            return kEmptyRef;
+        case Decision::Full:
+            return kFullRef;
+        case Decision::Leaf:
+            return MakeLeaf(box, fb.L, fb.G, terms);
+        case Decision::Subdivide:
+            break;
+    }
+    const uint32_t half = 1u << (s.maxDepth - depth);
     if (MemoryBytes() + kMaxInternalBytes + 8 * sizeof(Leaf) > s.memoryBudget ||
         LatticeTable().LiveBytes() > s.memoryBudget) {
         Count(c.budgetFired);
@@ -445,8 +518,130 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
     return PushInternal(children);
 }
 
-LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings) {
-    return LGOctree(patch.GetField(), threshold, patch.Box(), settings, patch.Own());
+LGOctree::LazyBlock::~LazyBlock() {
+    for (int child = 0; child < 8; ++child) {
+        if ((classes >> (16 + child)) & 1) delete Cell(child).children.load();
+    }
+}
+
+std::size_t LGOctree::LazyBlock::Bytes() const {
+    return sizeof(LazyBlock) + std::popcount(classes & 0xffu) * sizeof(LazyCell) +
+           terms.capacity() * sizeof(int32_t);
+}
+
+void LGOctree::FillLazyBlock(LazyBlock& block, std::span<const ChildPlan> plans) const {
+    int live = 0;
+    for (const ChildPlan& plan : plans) {
+        switch (plan.decision) {
+            case Decision::Empty:
+                break;
+            case Decision::Full:
+                block.classes |= 1u << (8 + plan.child);
+                break;
+            case Decision::Subdivide:
+                block.classes |= 1u << (16 + plan.child);
+                [[fallthrough]];
+            case Decision::Leaf:
+                block.classes |= 1u << plan.child;
+                ++live;
+                break;
+        }
+    }
+    block.cells = std::make_unique<LazyCell[]>(static_cast<size_t>(live));
+    thread_local std::vector<int32_t> terms;  // the lists, copied once at their exact size
+    terms.clear();
+    for (const ChildPlan& plan : plans) {
+        if (!((block.classes >> plan.child) & 1)) continue;
+        LazyCell& cell = block.cells[std::popcount(block.classes & ((1u << plan.child) - 1))];
+        cell.L = UpperFloat(plan.L);
+        cell.G = UpperFloat(plan.G);
+        cell.firstTerm = static_cast<uint32_t>(terms.size());
+        if (plan.decision == Decision::Leaf) {
+            field_.ActiveTerms(plan.box.Padded(leafPadding_), *plan.terms, terms);
+        } else {
+            terms.insert(terms.end(), plan.terms->begin(), plan.terms->end());
+        }
+        cell.termCount = static_cast<uint32_t>(terms.size()) - cell.firstTerm;
+    }
+    block.terms.assign(terms.begin(), terms.end());
+}
+
+void LGOctree::ExpandLazy(LazyBlock& block, const Bounds3& box, int depth, LatticePoint low,
+                          std::span<const int32_t> terms) const {
+    const uint32_t half = 1u << (settings_.maxDepth - depth);
+    // The values at the 27 points of the cell's 3×3×3 lattice (its children's corners),
+    // each evaluated once; a point off it (a child's centre) is evaluated where asked.
+    // Every list holding the rows meeting the point gives the same bits (Field::Value).
+    double grid[27];
+    bool known[27] = {};
+    auto offset = [half](uint32_t from, uint32_t to) {
+        const uint32_t d = to - from;
+        return d == 0 ? 0 : d == half ? 1 : d == 2 * half ? 2 : -1;
+    };
+    thread_local std::array<std::vector<int32_t>, 8> childTerms;
+    std::array<ChildPlan, 8> plans;
+    for (int i = 0; i < 8; ++i) {
+        const Bounds3 sub = ChildBox(box, i);
+        const LatticePoint q{low.x + ((i & 1) ? half : 0), low.y + ((i & 2) ? half : 0),
+                             low.z + ((i & 4) ? half : 0)};
+        std::vector<int32_t>& list = childTerms[static_cast<size_t>(i)];
+        list.clear();
+        field_.TermsMeeting(sub.Padded(leafPadding_), terms, list);
+        FieldBound fb;
+        const Decision decision =
+            Decide(sub, depth + 1, q, list, fb, [&](const Vec3& p, LatticePoint point) {
+                const int x = offset(low.x, point.x), y = offset(low.y, point.y),
+                          z = offset(low.z, point.z);
+                if (x < 0 || y < 0 || z < 0) return field_.Value(p, list);
+                const int k = x + 3 * y + 9 * z;
+                if (!known[k]) {
+                    grid[k] = field_.Value(p, list);
+                    known[k] = true;
+                }
+                return grid[k];
+            });
+        plans[static_cast<size_t>(i)] = {i, sub, decision, fb.L, fb.G, &list};
+    }
+    FillLazyBlock(block, plans);
+}
+
+const LGOctree::LazyBlock& LGOctree::Children(const LazyBlock& owner, const LazyCell& cell,
+                                              const Bounds3& box, int depth, LatticePoint low,
+                                              bool& keep,
+                                              std::unique_ptr<LazyBlock>& scratch) const {
+    if (const LazyBlock* kept = cell.children.load(std::memory_order_acquire)) return *kept;
+    auto made = std::make_unique<LazyBlock>();
+    auto expand = [&] { ExpandLazy(*made, box, depth, low, owner.Terms(cell)); };
+    const CellExpansionObserver* observer = lazy_->store->Observer();
+    if (observer) {
+        observer->Expand(expand);
+    } else {
+        expand();
+    }
+    if (keep) {
+        const std::size_t bytes = made->Bytes();
+        if (lazy_->store->Reserve(bytes)) {
+            LazyBlock* expected = nullptr;
+            if (cell.children.compare_exchange_strong(expected, made.get(),
+                                                      std::memory_order_acq_rel,
+                                                      std::memory_order_acquire)) {
+                lazy_->bytes.fetch_add(bytes, std::memory_order_relaxed);
+                if (observer) observer->Kept(std::popcount(made->classes & 0xffu), bytes);
+                return *made.release();
+            }
+            lazy_->store->Release(bytes);  // another thread kept the same children first
+            return *expected;
+        }
+        lazy_->degraded.store(true, std::memory_order_relaxed);
+    }
+    keep = false;
+    scratch = std::move(made);
+    return *scratch;
+}
+
+LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings,
+                          LazyCellStore* lazy) {
+    return LGOctree(patch.GetField(), threshold, patch.Box(), settings, patch.Own(), lazy);
 }
 
 }  // namespace rs

@@ -32,6 +32,12 @@
 // Empty/Full cells take no memory (two bits in their parent's record); leaves store L and G (rounded
 // up to floats) and their active terms (the terms not identically 0 in the cell), which the search sums alone.
 //
+// Per-cell mode (LazyCellStore; README.md, "Per-cell trees"): the same heuristics but 4 and
+// 5, applied to a cell's eight children when a ray first reaches it, and kept under the
+// object's budget. Under automatic accuracy a ray searches an inner cell no longer than
+// descentFootprints of its footprint widths as one leaf (the cell's L and G are bounds on
+// it), so cells far smaller than a pixel are never built.
+//
 // Per-leaf search over [tA, tB] (λ = tB − tA, gA, gB the end values, tm the midpoint), in
 // their sound forms (research note §4.2); each but 2 switchable:
 //   0bis   gA == 0 → candidate root tA.
@@ -64,9 +70,12 @@
 // than the floor) is skipped.
 #pragma once
 
+#include <atomic>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -114,6 +123,10 @@ struct OctreeHeuristics {
     // merge (a long thin skeleton) could take unbounded time and memory to build.
     std::size_t memoryBudget = static_cast<std::size_t>(Limits().octreeBytes);
 
+    // Per-cell trees under automatic accuracy: a ray with a footprint descends into an
+    // inner cell only while the cell's longest edge exceeds this many footprint widths;
+    // below, it searches the cell as one leaf. 0: always descend.
+    double descentFootprints = 8;
     // The LG search tests (lg_search.cpp).
     bool useTest0bis = true;
     bool useTest1 = true;
@@ -146,14 +159,59 @@ struct LeafSpan {
 
 enum class CellClass { Empty, Full, Leaf };
 
+// Told of the cells the per-cell lazy trees of an object expand (LazyCellStore).
+class CellExpansionObserver {
+  public:
+    virtual ~CellExpansionObserver() = default;
+    // Runs `expand` (one cell's expansion into its children) and attributes its work.
+    virtual void Expand(const std::function<void()>& expand) const = 0;
+    // `cells` cells taking `bytes` bytes were kept (published in a tree).
+    virtual void Kept(uint64_t cells, uint64_t bytes) const = 0;
+};
+
+// Shared by the per-cell lazy trees of one object (LGOctree's lazy mode): the memory budget
+// of the cells they keep, and an optional observer of their expansions. Must outlive the
+// trees. Thread-safe.
+class LazyCellStore {
+  public:
+    explicit LazyCellStore(std::size_t budget, const CellExpansionObserver* observer = nullptr)
+        : budget_(budget), observer_(observer) {}
+    // Takes `bytes` from the budget; false (taking nothing) when they do not fit.
+    bool Reserve(std::size_t bytes);
+    void Release(std::size_t bytes) { used_.fetch_sub(bytes, std::memory_order_relaxed); }
+    std::size_t UsedBytes() const { return used_.load(std::memory_order_relaxed); }
+    // True once some expansion did not fit the budget.
+    bool Degraded() const { return degraded_.load(std::memory_order_relaxed); }
+    const CellExpansionObserver* Observer() const { return observer_; }
+
+  private:
+    std::size_t budget_;
+    std::atomic<std::size_t> used_{0};
+    std::atomic<bool> degraded_{false};
+    const CellExpansionObserver* observer_;
+};
+
 class LGOctree {
   public:
     // Builds the tree of g = F − T over `box` (the copy shares the field's term table).
     // With ownTerm >= 0 the tree serves a patch whose own term is the field's term (row)
     // `ownTerm`: cells where that term cannot predominate are marked Empty (the "patch"
     // rule), so FirstRoot then only finds roots an `accept` predominance test could keep.
+    //
+    // With `lazy` (per-cell mode), only the root cell is classified here: an inner cell's
+    // eight children are classified and kept the first time a search or Classify reaches it,
+    // by whichever thread, lock-free (racing threads compute the same children and one
+    // publishes them). A cell's content is a function of the cell alone (its box, depth and
+    // the rows meeting it), so every result is the same whatever the order and threads of
+    // the rays: the heuristics are those of the whole build but the merges (4 and 5), which
+    // need the children, and the budget is `lazy`'s, shared by the object's trees; children
+    // that do not fit it are computed for the ray at hand and dropped after (slower, the
+    // same results).
     LGOctree(Field field, double threshold, const Bounds3& box, const OctreeSettings& settings,
-             int ownTerm = -1);
+             int ownTerm = -1, LazyCellStore* lazy = nullptr);
+    LGOctree(LGOctree&&) noexcept;
+    LGOctree& operator=(LGOctree&&) noexcept;
+    ~LGOctree();
 
     const Field& GetField() const { return field_; }
     double Threshold() const { return threshold_; }
@@ -206,11 +264,15 @@ class LGOctree {
     std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax,
                                     const RootFilter& accept = {}) const;
 
-    int InternalCount() const { return internalCount_; }
-    int LeafCount() const { return static_cast<int>(leaves_.size()); }
+    // The cells and memory of a whole tree; in per-cell mode, those kept at construction
+    // (the root cell; the store's observer is told of the cells kept later).
+    int InternalCount() const;
+    int LeafCount() const;
     std::size_t MemoryBytes() const;
-    // True when the memory budget stopped subdivision somewhere.
-    bool Degraded() const { return degraded_; }
+    // True when the memory budget stopped subdivision somewhere (per-cell mode: when the
+    // store's budget refused some cells).
+    bool Degraded() const;
+    bool PerCell() const { return lazy_ != nullptr; }
 
   private:
     // Child reference: >= 0 internal node (its record's offset in nodes_); kEmptyRef,
@@ -245,6 +307,14 @@ class LGOctree {
     struct LatticePoint {
         uint32_t x, y, z;
     };
+    // What the heuristics range, patch, 1, 1bis, 2, 3 and 3bis (in that order) make of cell
+    // `box` at `depth` (low corner `low`), whose TermsMeeting list is `terms`; fb receives
+    // the cell's bound. value(p, q) gives F at lattice point q (coordinates p). Defined and
+    // used in the .cpp only.
+    enum class Decision { Empty, Full, Leaf, Subdivide };
+    template <class Value>
+    Decision Decide(const Bounds3& box, int depth, LatticePoint low,
+                    std::span<const int32_t> terms, FieldBound& fb, Value&& value) const;
     // Builds cell `box`. `parentTerms` holds every row of the field meeting the parent cell
     // padded by leafPadding_ (Field::TermsMeeting; the field's rows at the root): the cell
     // keeps those meeting its own padded box, and its bound, field values and leaf list sum
@@ -275,6 +345,78 @@ class LGOctree {
     bool Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
                Visitor& visit) const;
 
+    // Per-cell mode. A block holds the eight children of an expanded inner cell: the
+    // classes, then the live ones (leaves and inner cells) in child order, each with its
+    // bounds (rounded up to floats) and its list in the block's terms: a leaf's active
+    // terms, an inner cell's TermsMeeting list (its children's parent list).
+    struct LazyBlock;
+    struct LazyCell {
+        float L = 0, G = 0;
+        uint32_t firstTerm = 0, termCount = 0;
+        // An inner cell's children once expanded and kept; owned by the block.
+        mutable std::atomic<LazyBlock*> children{nullptr};
+    };
+    struct LazyBlock {
+        // Bit i: child i live; 8 + i: child i, not live, is Full (else Empty); 16 + i: child
+        // i, live, is an inner cell (else a leaf).
+        uint32_t classes = 0;
+        std::unique_ptr<LazyCell[]> cells;
+        std::vector<int32_t> terms;
+        ~LazyBlock();
+        std::size_t Bytes() const;
+        const LazyCell& Cell(int child) const {
+            return cells[std::popcount(classes & ((1u << child) - 1))];
+        }
+        std::span<const int32_t> Terms(const LazyCell& cell) const {
+            return {terms.data() + cell.firstTerm, cell.termCount};
+        }
+    };
+    // The tree of per-cell mode: the root cell as child 0 of a block of its own.
+    struct LazyTree {
+        LazyCellStore* store;
+        LazyBlock root;
+        std::atomic<std::size_t> bytes{0};  // of the blocks kept, released to the store
+        std::atomic<bool> degraded{false};
+        ~LazyTree() { store->Release(bytes.load()); }
+    };
+    // A child of a block being made: its index, box, class and bound, and its TermsMeeting
+    // list.
+    struct ChildPlan {
+        int child;
+        Bounds3 box;
+        Decision decision;
+        double L, G;
+        const std::vector<int32_t>* terms;
+    };
+    // Fills an empty block with these children (in increasing child order).
+    void FillLazyBlock(LazyBlock& block, std::span<const ChildPlan> plans) const;
+    // Classifies the eight children of cell (box, depth, low) whose TermsMeeting list is
+    // `terms` into `block`.
+    void ExpandLazy(LazyBlock& block, const Bounds3& box, int depth, LatticePoint low,
+                    std::span<const int32_t> terms) const;
+    // The children of inner cell `cell` of `owner` (cell box, depth, low): the kept ones, else
+    // computed now, kept when `keep` and the budget allows, else held in `scratch` (and
+    // `keep` turns false: their own children are not kept either).
+    const LazyBlock& Children(const LazyBlock& owner, const LazyCell& cell, const Bounds3& box,
+                              int depth, LatticePoint low, bool& keep,
+                              std::unique_ptr<LazyBlock>& scratch) const;
+    // The leaves below child `child` of `owner` (cell box, depth, low) met by the ray within
+    // [t0, t1], in ray order, expanding inner cells on the way (kept while `keep`); with
+    // `byFootprint`, an inner cell DescendInto refuses is visited as a leaf (its bounds and
+    // its TermsMeeting list, a superset of its active terms).
+    template <class Visitor>
+    bool VisitLazy(const LazyBlock& owner, int child, const Bounds3& box, int depth,
+                   LatticePoint low, bool keep, bool byFootprint, const Ray& ray, double t0,
+                   double t1, Visitor& visit) const;
+    // True when the ray's span [t0, t1] in cell `box` should descend into the cell's
+    // children: the cell's longest edge exceeds descentFootprints ray footprints (their
+    // smaller width on the span).
+    bool DescendInto(const Bounds3& box, const Ray& ray, double t0, double t1) const;
+    // Visits the tree, whichever its mode.
+    template <class Visitor>
+    bool VisitRoot(const Ray& ray, double t0, double t1, bool byFootprint,
+                   Visitor& visit) const;
+
     Field field_;
     double threshold_;
     int ownTerm_;
@@ -295,7 +437,7 @@ class LGOctree {
     std::vector<int32_t> terms_;  // the leaves' active-term lists
     Ref root_ = kEmptyRef;
     bool degraded_ = false;
-    std::vector<TermValueRange> termRanges_;  // build scratch (Build's predominance test)
+    std::unique_ptr<LazyTree> lazy_;  // per-cell mode only
     // Build scratch: the TermsMeeting list of the cell being built at each depth (a
     // thread's reused arrays, held only during the build).
     std::vector<std::vector<int32_t>> cellTerms_;
@@ -313,8 +455,10 @@ CounterId RiddersIterationCounter();
 // registration order, so callers can attribute them (object_stats.h).
 std::vector<CounterId> OctreeCounterIds();
 
-// The octree of a patch: its field over its box, with the patch rule for its own term.
-LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings);
+// The octree of a patch: its field over its box, with the patch rule for its own term;
+// per cell with `lazy`.
+LGOctree BuildPatchOctree(const Patch& patch, double threshold, const OctreeSettings& settings,
+                          LazyCellStore* lazy = nullptr);
 
 // The first root of a patch along the ray in (tMin, tMax): a root of the patch field where
 // the patch's own term predominates (patch.h), continuing past rejected roots. The seam

@@ -213,19 +213,14 @@ class RaySearch {
 
 }  // namespace
 
-template <class Visitor>
-bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
-                     Visitor& visit) const {
-    if (ref == kEmptyRef || ref == kFullRef) return false;
-    if (ref <= kFirstLeafRef) {
-        const Leaf& leaf = leaves_[kFirstLeafRef - ref];
-        return visit(LeafSpan{t0, t1, leaf.L, leaf.G,
-                              {terms_.data() + leaf.firstTerm, leaf.termCount}});
-    }
-    const uint32_t classes = static_cast<uint32_t>(nodes_[ref]);
-    // Split [t0, t1] where the ray crosses the three mid-planes; each piece lies in one
-    // child, found from the piece's midpoint. Empty and Full children are skipped before
-    // their boxes are formed.
+namespace {
+
+// Splits the ray's span [t0, t1] in `box` where it crosses the three mid-planes and calls
+// visit(child, childBox, a, b) for each piece, in ray order, whose child's bit is set in
+// `live` (the child found from the piece's midpoint); stops early when visit returns true.
+template <class Visit>
+bool ForEachLivePiece(const Bounds3& box, uint32_t live, const Ray& ray, double t0, double t1,
+                      Visit&& visit) {
     const Vec3 c = box.Center();
     double cuts[5];
     int n = 0;
@@ -244,16 +239,74 @@ bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, dou
         if (b <= a && n > 2) continue;
         const Vec3 p = ray.At(0.5 * (a + b));
         const int child = (p.x >= c.x ? 1 : 0) | (p.y >= c.y ? 2 : 0) | (p.z >= c.z ? 4 : 0);
-        if (!((classes >> child) & 1)) continue;  // Empty or Full
-        const Ref next = nodes_[ref + 1 + std::popcount(classes & ((1u << child) - 1))];
+        if (!((live >> child) & 1)) continue;  // Empty or Full
         Bounds3 sub;  // ChildBox(box, child), from the centre already at hand
         sub.lo = {(child & 1) ? c.x : box.lo.x, (child & 2) ? c.y : box.lo.y,
                   (child & 4) ? c.z : box.lo.z};
         sub.hi = {(child & 1) ? box.hi.x : c.x, (child & 2) ? box.hi.y : c.y,
                   (child & 4) ? box.hi.z : c.z};
-        if (Visit(next, sub, ray, a, b, visit)) return true;
+        if (visit(child, sub, a, b)) return true;
     }
     return false;
+}
+
+}  // namespace
+
+template <class Visitor>
+bool LGOctree::Visit(Ref ref, const Bounds3& box, const Ray& ray, double t0, double t1,
+                     Visitor& visit) const {
+    if (ref == kEmptyRef || ref == kFullRef) return false;
+    if (ref <= kFirstLeafRef) {
+        const Leaf& leaf = leaves_[kFirstLeafRef - ref];
+        return visit(LeafSpan{t0, t1, leaf.L, leaf.G,
+                              {terms_.data() + leaf.firstTerm, leaf.termCount}});
+    }
+    const uint32_t classes = static_cast<uint32_t>(nodes_[ref]);
+    return ForEachLivePiece(box, classes, ray, t0, t1,
+                            [&](int child, const Bounds3& sub, double a, double b) {
+                                const uint32_t before = classes & ((1u << child) - 1);
+                                const Ref next = nodes_[ref + 1 + std::popcount(before)];
+                                return Visit(next, sub, ray, a, b, visit);
+                            });
+}
+
+template <class Visitor>
+bool LGOctree::VisitLazy(const LazyBlock& owner, int child, const Bounds3& box, int depth,
+                         LatticePoint low, bool keep, bool byFootprint, const Ray& ray,
+                         double t0, double t1, Visitor& visit) const {
+    const LazyCell& cell = owner.Cell(child);
+    const bool inner = (owner.classes >> (16 + child)) & 1;
+    if (!inner || (byFootprint && !DescendInto(box, ray, t0, t1))) {
+        return visit(LeafSpan{t0, t1, cell.L, cell.G, owner.Terms(cell)});
+    }
+    std::unique_ptr<LazyBlock> scratch;
+    const LazyBlock& block = Children(owner, cell, box, depth, low, keep, scratch);
+    const uint32_t half = 1u << (settings_.maxDepth - depth);
+    return ForEachLivePiece(box, block.classes, ray, t0, t1,
+                            [&](int i, const Bounds3& sub, double a, double b) {
+                                const LatticePoint q{low.x + ((i & 1) ? half : 0),
+                                                     low.y + ((i & 2) ? half : 0),
+                                                     low.z + ((i & 4) ? half : 0)};
+                                return VisitLazy(block, i, sub, depth + 1, q, keep, byFootprint,
+                                                 ray, a, b, visit);
+                            });
+}
+
+bool LGOctree::DescendInto(const Bounds3& box, const Ray& ray, double t0, double t1) const {
+    // The footprint is affine in t: its smaller end value is its minimum on the span.
+    const double width =
+        std::min(ray.footprintWidth + ray.footprintSpread * t0,
+                 ray.footprintWidth + ray.footprintSpread * t1) * Length(ray.dir);
+    const Vec3 e = box.Extent();
+    return std::max({e.x, e.y, e.z}) > settings_.descentFootprints * width;
+}
+
+template <class Visitor>
+bool LGOctree::VisitRoot(const Ray& ray, double t0, double t1, bool byFootprint,
+                         Visitor& visit) const {
+    if (!lazy_) return Visit(root_, box_, ray, t0, t1, visit);
+    if (!(lazy_->root.classes & 1)) return false;
+    return VisitLazy(lazy_->root, 0, box_, 0, {0, 0, 0}, true, byFootprint, ray, t0, t1, visit);
 }
 
 void LGOctree::Traverse(const Ray& ray, double tMin, double tMax,
@@ -261,11 +314,34 @@ void LGOctree::Traverse(const Ray& ray, double tMin, double tMax,
     if (box_.IsEmpty()) return;
     double t0 = tMin, t1 = tMax;
     if (!box_.ClipRay(ray, t0, t1)) return;
-    Visit(root_, box_, ray, t0, t1, visit);
+    VisitRoot(ray, t0, t1, false, visit);
 }
 
 CellClass LGOctree::Classify(const Vec3& p) const {
     if (box_.IsEmpty() || !box_.Contains(p)) return CellClass::Empty;
+    if (lazy_) {
+        const LazyBlock* owner = &lazy_->root;
+        std::unique_ptr<LazyBlock> held;  // owner, when not kept
+        int child = 0, depth = 0;
+        Bounds3 box = box_;
+        LatticePoint low{0, 0, 0};
+        bool keep = true;
+        while ((owner->classes >> (16 + child)) & 1) {
+            std::unique_ptr<LazyBlock> scratch;
+            const LazyBlock& block =
+                Children(*owner, owner->Cell(child), box, depth, low, keep, scratch);
+            const uint32_t half = 1u << (settings_.maxDepth - depth);
+            child = ChildIndexOf(box, p);
+            box = ChildBox(box, child);
+            low = {low.x + ((child & 1) ? half : 0), low.y + ((child & 2) ? half : 0),
+                   low.z + ((child & 4) ? half : 0)};
+            ++depth;
+            owner = &block;
+            if (scratch) held = std::move(scratch);
+        }
+        if ((owner->classes >> child) & 1) return CellClass::Leaf;
+        return (owner->classes >> (8 + child)) & 1 ? CellClass::Full : CellClass::Empty;
+    }
     Ref ref = root_;
     Bounds3 box = box_;
     while (ref >= 0) {
@@ -289,7 +365,9 @@ std::optional<double> LGOctree::FirstRoot(const Ray& ray, double tMin, double tM
     if (!box_.ClipRay(ray, t0, t1)) return std::nullopt;
     RaySearch search(*this, ray, tMin, tMax, accept);
     auto leaf = [&search](const LeafSpan& span) { return search.Leaf(span); };
-    Visit(root_, box_, ray, t0, t1, leaf);
+    const bool byFootprint = settings_.autoTolerance && settings_.descentFootprints > 0 &&
+                             (ray.footprintWidth != 0 || ray.footprintSpread != 0);
+    VisitRoot(ray, t0, t1, byFootprint, leaf);
     return search.result;
 }
 

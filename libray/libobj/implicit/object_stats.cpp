@@ -95,9 +95,19 @@ ImplicitObjectStats::BuildSnapshot ImplicitObjectStats::TakeBuildSnapshot() cons
 
 // Attributes a build to this object by differences of the building thread's own counters
 // (other threads may be counting at the same time).
-void ImplicitObjectStats::AttributeBuild(const BuildSnapshot& before, const LGOctree& tree) const {
+void ImplicitObjectStats::Expand(const std::function<void()>& expand) const {
+    const BuildSnapshot before = TakeBuildSnapshot();
+    expand();
+    AttributeBuild(before);
+}
+
+void ImplicitObjectStats::Kept(uint64_t cells, uint64_t bytes) const {
+    Count(cells_, cells);
+    Count(memoryBytes_, bytes);
+}
+
+void ImplicitObjectStats::AttributeBuild(const BuildSnapshot& before) const {
     Count(buildMicroseconds_, ThreadCpuMicroseconds() - before.cpuStart);
-    CountTree(tree);
     const std::vector<std::pair<CounterId, std::string>>& sources = BuildCounterSources();
     const FieldCounters& field = FieldCounterIds();
     for (size_t k = 0; k < sources.size(); ++k) {

@@ -13,6 +13,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,7 +28,7 @@ namespace rs {
 // so far; callers counting a ray's evaluations by ThreadCount differences subtract it.
 uint64_t ImplicitBuildEvaluations();
 
-class ImplicitObjectStats {
+class ImplicitObjectStats final : public CellExpansionObserver {
   public:
     // Registers the object's counters under the next label.
     ImplicitObjectStats();
@@ -49,9 +50,13 @@ class ImplicitObjectStats {
     LGOctree BuildTree(Build&& build) const {
         const BuildSnapshot before = TakeBuildSnapshot();
         LGOctree tree = build();
-        AttributeBuild(before, tree);
+        AttributeBuild(before);
+        CountTree(tree);
         return tree;
     }
+    // The cell expansions of per-cell trees (LazyCellStore), attributed like tree builds.
+    void Expand(const std::function<void()>& expand) const override;
+    void Kept(uint64_t cells, uint64_t bytes) const override;
 
     // Runs search() (a ray's intersection, returning whether it hit) and counts the call,
     // the hit and the evaluations it made, less those of the tree builds it triggered.
@@ -73,7 +78,7 @@ class ImplicitObjectStats {
         uint64_t builtValues, builtGradients, builtBounds, builtIterations;  // inside builds
     };
     BuildSnapshot TakeBuildSnapshot() const;
-    void AttributeBuild(const BuildSnapshot& before, const LGOctree& tree) const;
+    void AttributeBuild(const BuildSnapshot& before) const;
     RaySnapshot TakeRaySnapshot() const;
     void CountRay(const RaySnapshot& before, bool found) const;
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rs {
 
@@ -86,6 +87,12 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
             stats_.CountTree(*trees_[i].Built());
         }
     }
+    if (contacts.empty()) {
+        const std::size_t perTree = std::min(settings_.memoryBudget,
+                                             std::numeric_limits<std::size_t>::max() /
+                                                 kCellBudgetTrees);  // no overflow
+        cellStore_ = std::make_unique<LazyCellStore>(kCellBudgetTrees * perTree, &stats_);
+    }
     std::vector<Bounds3> patchBoxes;
     patchBoxes.reserve(patches_.size());
     for (const Patch& patch : patches_) patchBoxes.push_back(patch.Box());
@@ -104,7 +111,8 @@ OctreeSettings PatchesMethod::PatchSettings(const Patch& patch) const {
 const LGOctree& PatchesMethod::Tree(int i) const {
     return trees_[i].Get([this, i] {
         return stats_.BuildTree([this, i] {
-            return BuildPatchOctree(patches_[i], threshold_, PatchSettings(patches_[i]));
+            return BuildPatchOctree(patches_[i], threshold_, PatchSettings(patches_[i]),
+                                    cellStore_.get());
         });
     });
 }

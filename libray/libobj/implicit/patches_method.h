@@ -1,15 +1,18 @@
 // Layer 8 of the implicit module: method `patches`, Gascuel's implicit patches (1995). It
 // owns everything the method needs: one patch per positive-weight skeleton (patch.h; its
 // neighbours automatic or from the blend graph), the contacts that deform them (contact.h),
-// one LG octree per patch, built by the first ray reaching the patch (LazyOctree), and a
-// bounding volume hierarchy over the patch boxes that rays walk front to back.
+// one LG octree per patch, made by the first ray reaching the patch (LazyOctree) and, but
+// for objects with contacts, grown per cell by the rays (LGOctree's per-cell mode, under
+// one budget for the object), and a bounding volume hierarchy over the patch boxes that
+// rays walk front to back.
 //
 // The octree settings are the object's (its RootSearchSettings and OctreeHeuristics), with
 // each patch's depth chosen from its own skeleton under `octree auto` (AutoMinDepth).
-// Objects with contacts build every tree at once (the contacts measure
-// with them); the others build each tree lazily.
+// Objects with contacts build every tree whole and at once (the contacts measure with
+// them); the others make each tree lazily, per cell.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -48,6 +51,10 @@ class PatchesMethod final : public IntersectionMethod {
     static int AutoMinDepth(const Patch& patch, double threshold);
 
   private:
+    // The per-cell trees of an object keep at most this many times one tree's memory budget
+    // (OctreeHeuristics::memoryBudget) of cells between them.
+    static constexpr std::size_t kCellBudgetTrees = 4;
+
     // The octree settings of a patch (the object's, with the auto depth).
     OctreeSettings PatchSettings(const Patch& patch) const;
     // Tree of patch i, building it on first use. Thread-safe.
@@ -61,6 +68,9 @@ class PatchesMethod final : public IntersectionMethod {
     const ImplicitObjectStats& stats_;
     std::vector<Patch> patches_;
     std::vector<int> patchOfTerm_;
+    // The budget and observer of the per-cell trees (declared before the trees: they
+    // release their cells to it).
+    std::unique_ptr<LazyCellStore> cellStore_;
     std::unique_ptr<LazyOctree[]> trees_;  // one per patch
     std::vector<DeformedPatch> contacts_;
     Bounds3 bounds_;
