@@ -7,6 +7,7 @@
 
 #include "libcommon/cpu_clock.h"
 #include "libobj/implicit/implicit_block.h"
+#include "libobj/implicit/implicit_motion.h"
 #include "libobj/implicit/implicit_syntax.h"
 #include "libobj/implicit/method_registry.h"
 #include "libobj/object.h"
@@ -28,6 +29,7 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     auto surface =
         std::make_shared<ImplicitSurface>(std::move(block.terms), std::move(block.options));
     surface->termsAt_ = std::move(block.termsAt);
+    surface->block_ = std::move(block.description);
     return surface;
 }
 
@@ -85,16 +87,46 @@ void ImplicitSurface::Build() {
         partOfTerm_[i] = static_cast<int>(termOfPart_.size());
         termOfPart_.push_back(static_cast<int>(i));
     }
-    method_ = MethodEntryOf(options_.method).create(whole_, options_, stats_);
+    methodOptions_ = options_;
+    if (whole_.Motion()) {
+        methodOptions_.octree.useHeuristic1 = false;
+        methodOptions_.octree.useHeuristic1bis = false;
+    }
+    method_ = MethodEntryOf(options_.method).create(whole_, methodOptions_, stats_);
     bounds_ = method_->Bounds(whole_);
     stats_.CountPreprocessing(ThreadCpuMicroseconds() - cpuStart);
 }
 
-void ImplicitSurface::PrepareFrame(double frameTime) {
+void ImplicitSurface::PrepareFrame(double frameTime, double shutter) {
     if (!termsAt_) return;
     method_.reset();  // it refers to the terms being replaced
-    whole_ = Field(termsAt_(frameTime));
+    if (shutter > 0) {
+        if (options_.method == ImplicitMethod::Polynomial) {
+            // Its per-object polynomial terms cannot move: kb89 sums the same field.
+            options_.method = ImplicitMethod::Kb89;
+            options_.octree = MethodOctreeSettings(options_.method, options_.octree,
+                                                   options_.patchesDRatio);
+        }
+        whole_ = MovingField(frameTime, frameTime + shutter);
+    } else {
+        whole_ = Field(termsAt_(frameTime));
+    }
     Build();
+}
+
+Field ImplicitSurface::MovingField(double t0, double t1) const {
+    const SourceLocation where = block_->Where(block_->skeletons.front().place);
+    if (!options_.contacts.empty() || options_.autoContacts) {
+        Report(Severity::Abort, where,
+               "implicit object: skeleton motion blur (shutter open) does not support "
+               "contacts; close the shutter or remove them");
+    }
+    MovingTerms moving = BuildMovingTerms(block_, termsAt_(0.5 * (t0 + t1)), t0, t1);
+    if (!moving.error.empty()) {
+        Report(Severity::Abort, block_->Where(moving.place),
+               "implicit object, shutter [%g, %g]: %s", t0, t1, moving.error.c_str());
+    }
+    return Field(std::move(moving.reference), std::move(moving.motion));
 }
 
 const IntersectionCounters& ImplicitSurface::Counters() const {
@@ -105,15 +137,19 @@ const IntersectionCounters& ImplicitSurface::Counters() const {
 bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
                                 PrimitiveHit& hit) const {
     return stats_.CountIntersect([&] {
+        // A moving field is evaluated at the ray's time; the hit keeps it for Normal.
+        const RayTimeScope time(whole_.Motion() ? ray.time : kNoRayTime);
         const std::optional<MethodHit> found = method_->Intersect(ray, tMin, tMax);
         if (!found) return false;
         hit.t = found->t;
+        hit.a = ray.time;
         hit.part = found->term >= 0 ? partOfTerm_[found->term] : -1;
         return true;
     });
 }
 
 SurfaceNormals ImplicitSurface::Normal(const Vec3& p, const PrimitiveHit& hit) const {
+    const RayTimeScope time(whole_.Motion() ? hit.a : kNoRayTime);
     const bool hasPart = hit.part >= 0 && hit.part < static_cast<int>(termOfPart_.size());
     const Vec3 n = method_->Normal(whole_, p, hasPart ? termOfPart_[hit.part] : -1);
     return {n, n, false};

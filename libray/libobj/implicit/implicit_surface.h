@@ -18,6 +18,7 @@
 #include "libcommon/arg_reader.h"
 #include "libobj/implicit/implicit_options.h"
 #include "libobj/implicit/implicit_overrides.h"
+#include "libobj/implicit/implicit_syntax.h"
 #include "libobj/implicit/intersection_method.h"
 #include "libobj/implicit/object_stats.h"
 #include "libobj/primitive.h"
@@ -43,7 +44,12 @@ class ImplicitSurface final : public Primitive {
     bool Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const override;
     // Shading and geometric normal: the method's (IntersectionMethod::Normal).
     SurfaceNormals Normal(const Vec3& p, const PrimitiveHit& hit) const override;
-    void PrepareFrame(double frameTime) override;
+    // Rebuilds an animated object for the frame: at frameTime with the shutter closed; with
+    // it open, as a moving field over [frameTime, frameTime + shutter] (implicit_motion.h),
+    // each ray then seeing the skeletons at its own time. Fails (Abort, at the skeleton)
+    // when the motion cannot be bounded or the object uses contacts. Method polynomial,
+    // whose terms cannot move, is replaced by kb89 (the same field) with the shutter open.
+    void PrepareFrame(double frameTime, double shutter) override;
 
     const std::vector<FieldTerm>& Terms() const { return whole_.Terms(); }
     ImplicitMethod Method() const { return options_.method; }
@@ -65,11 +71,19 @@ class ImplicitSurface final : public Primitive {
   private:
     // Makes the method for the current terms and options and counts the time.
     void Build();
+    // The moving field of the animated terms over [t0, t1] (PrepareFrame).
+    Field MovingField(double t0, double t1) const;
 
     ImplicitOptions options_;
     ImplicitObjectStats stats_;
     // Rebuilds the terms for a time (set when any parameter is animated).
     std::function<std::vector<FieldTerm>(double)> termsAt_;
+    // The block, for motion blur (set with termsAt_).
+    std::shared_ptr<const ImplicitDescription> block_;
+    // The options the method is made with: options_, but with a moving field without the
+    // octree heuristics 1 and 1bis (they decide a whole cell from its centre's value, which
+    // a moving skeleton changes within the shutter).
+    ImplicitOptions methodOptions_;
     // The plain sum. Its table holds the object's terms, stored once: the patches' fields
     // share it.
     Field whole_;
@@ -78,7 +92,7 @@ class ImplicitSurface final : public Primitive {
     // others) and the term of each part.
     std::vector<int> partOfTerm_, termOfPart_;
     Bounds3 bounds_;
-    // Holds references to whole_, options_ and stats_: declared after them.
+    // Holds references to whole_, methodOptions_ and stats_: declared after them.
     std::unique_ptr<IntersectionMethod> method_;
 };
 
