@@ -88,10 +88,7 @@ void ImplicitSurface::Build() {
         termOfPart_.push_back(static_cast<int>(i));
     }
     methodOptions_ = options_;
-    if (whole_.Motion()) {
-        methodOptions_.octree.useHeuristic1 = false;
-        methodOptions_.octree.useHeuristic1bis = false;
-    }
+    if (whole_.Motion()) methodOptions_.octree.useHeuristic1bis = false;
     method_ = MethodEntryOf(options_.method).create(whole_, methodOptions_, stats_);
     bounds_ = method_->Bounds(whole_);
     stats_.CountPreprocessing(ThreadCpuMicroseconds() - cpuStart);

@@ -81,8 +81,9 @@ class ImplicitSurface final : public Primitive {
     // The block, for motion blur (set with termsAt_).
     std::shared_ptr<const ImplicitDescription> block_;
     // The options the method is made with: options_, but with a moving field without the
-    // octree heuristics 1 and 1bis (they decide a whole cell from its centre's value, which
-    // a moving skeleton changes within the shutter).
+    // octree heuristic 1bis (it decides a whole cell from its centre's value and gradient,
+    // which a moving skeleton changes within the shutter; heuristic 1 uses the centre's
+    // value range over the shutter instead, lg_octree.cpp).
     ImplicitOptions methodOptions_;
     // The plain sum. Its table holds the object's terms, stored once: the patches' fields
     // share it.

@@ -359,7 +359,16 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
     double gc =
         LatticeValue(centre, {low.x + half, low.y + half, low.z + half}, terms) - threshold_;
     Ref mark = gc > 0 ? kFullRef : kEmptyRef;
-    if (s.useHeuristic1 && std::abs(gc) > b * fb.L) {
+    // A moving field's centre value varies within the shutter (field_motion.h): heuristic
+    // 1 then needs it beyond b·L at every time, from its range at the centre over time.
+    double gcLo = gc, gcHi = gc;
+    if (field_.Motion()) {
+        const FieldBound at = field_.Bound(Bounds3(centre, centre), terms, nullptr);
+        gcLo = at.valueMin - threshold_;
+        gcHi = at.valueMax - threshold_;
+        mark = gcLo > 0 ? kFullRef : kEmptyRef;
+    }
+    if (s.useHeuristic1 && (gcLo > b * fb.L || gcHi < -b * fb.L)) {
         Count(c.h1Fired);
         return mark;
     }
@@ -380,7 +389,10 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
     // leave the search no curvature bound at all.
     if (depth >= s.minDepth && std::isfinite(fb.G)) {
         if (s.useHeuristic3) {
-            bool anyIn = gc > 0, anyOut = gc <= 0;
+            // A moving field's surface may cross the cell at some time of the shutter
+            // whenever its range straddles T, as it does here: a leaf, as if it crossed.
+            const bool moving = field_.Motion() != nullptr;
+            bool anyIn = gc > 0 || moving, anyOut = gc <= 0 || moving;
             for (int i = 0; i < 8 && !(anyIn && anyOut); ++i) {
                 LatticePoint q{low.x + ((i & 1) ? edge : 0), low.y + ((i & 2) ? edge : 0),
                                low.z + ((i & 4) ? edge : 0)};
