@@ -31,16 +31,20 @@ constexpr size_t kCachesPerThread = 8;
 TermCache& CacheFor(uint64_t id, size_t rows) {
     thread_local std::vector<TermCache> caches;
     thread_local uint64_t clock = 0;
+    thread_local size_t last = 0;  // the cache found last time: every term of a sum asks
+    if (last < caches.size() && caches[last].id == id) return caches[last];
     ++clock;
     TermCache* oldest = nullptr;
     for (TermCache& c : caches) {
         if (c.id == id) {
             c.lastUse = clock;
+            last = static_cast<size_t>(&c - caches.data());
             return c;
         }
         if (!oldest || c.lastUse < oldest->lastUse) oldest = &c;
     }
     TermCache& c = caches.size() < kCachesPerThread ? caches.emplace_back() : *oldest;
+    last = static_cast<size_t>(&c - caches.data());
     c.id = id;
     c.time = std::numeric_limits<double>::quiet_NaN();
     c.lastUse = clock;

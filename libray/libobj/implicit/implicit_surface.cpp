@@ -1,5 +1,7 @@
 #include "libobj/implicit/implicit_surface.h"
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 #include <string>
 #include <utility>
@@ -89,14 +91,24 @@ void ImplicitSurface::Build() {
     }
     methodOptions_ = options_;
     if (whole_.Motion()) methodOptions_.octree.useHeuristic1bis = false;
-    method_ = MethodEntryOf(options_.method).create(whole_, methodOptions_, stats_);
-    bounds_ = method_->Bounds(whole_);
+    const MethodEntry& entry = MethodEntryOf(options_.method);
+    if (slices_.empty()) {
+        method_ = entry.create(whole_, methodOptions_, stats_);
+        bounds_ = method_->Bounds(whole_);
+    } else {
+        bounds_ = Bounds3();
+        for (TimeSlice& slice : slices_) {
+            slice.method = entry.create(slice.field, methodOptions_, stats_);
+            bounds_.Extend(slice.method->Bounds(slice.field));
+        }
+    }
     stats_.CountPreprocessing(ThreadCpuMicroseconds() - cpuStart);
 }
 
 void ImplicitSurface::PrepareFrame(double frameTime, double shutter) {
     if (!termsAt_) return;
     method_.reset();  // it refers to the terms being replaced
+    slices_.clear();
     if (shutter > 0) {
         if (options_.method == ImplicitMethod::Polynomial) {
             // Its per-object polynomial terms cannot move: kb89 sums the same field.
@@ -104,14 +116,36 @@ void ImplicitSurface::PrepareFrame(double frameTime, double shutter) {
             options_.octree = MethodOctreeSettings(options_.method, options_.octree,
                                                    options_.patchesDRatio);
         }
-        whole_ = MovingField(frameTime, frameTime + shutter);
+        MakeTimeSlices(frameTime, frameTime + shutter);
     } else {
         whole_ = Field(termsAt_(frameTime));
     }
     Build();
 }
 
-Field ImplicitSurface::MovingField(double t0, double t1) const {
+void ImplicitSurface::MakeTimeSlices(double t0, double t1) {
+    double relativeReach = 0;
+    MovingField(t0, t1, &relativeReach);
+    // Halving the interval about halves the reach of smooth motions.
+    const int count = std::clamp(static_cast<int>(std::ceil(relativeReach / kSliceReach)), 1,
+                                 kMaxTimeSlices);
+    for (int k = 0; k < count; ++k) {
+        const double start = k == 0 ? t0 : slices_.back().end;
+        const double end = k + 1 == count ? t1 : t0 + (t1 - t0) * (k + 1) / count;
+        slices_.push_back({end, MovingField(start, end), nullptr});
+    }
+    whole_ = slices_.front().field;
+}
+
+const ImplicitSurface::TimeSlice* ImplicitSurface::SliceAt(double time) const {
+    if (slices_.empty()) return nullptr;
+    for (const TimeSlice& slice : slices_) {
+        if (time <= slice.end) return &slice;
+    }
+    return &slices_.back();
+}
+
+Field ImplicitSurface::MovingField(double t0, double t1, double* relativeReach) const {
     const SourceLocation where = block_->Where(block_->skeletons.front().place);
     if (!options_.contacts.empty() || options_.autoContacts) {
         Report(Severity::Abort, where,
@@ -122,6 +156,15 @@ Field ImplicitSurface::MovingField(double t0, double t1) const {
     if (!moving.error.empty()) {
         Report(Severity::Abort, block_->Where(moving.place),
                "implicit object, shutter [%g, %g]: %s", t0, t1, moving.error.c_str());
+    }
+    if (relativeReach) {
+        *relativeReach = 0;
+        for (size_t i = 0; i < moving.reference.size(); ++i) {
+            const TermMotion& m = moving.motion->Of(static_cast<int>(i));
+            if (!m.moving) continue;
+            *relativeReach =
+                std::max(*relativeReach, m.reach / moving.reference[i].kernel.Radius());
+        }
     }
     return Field(std::move(moving.reference), std::move(moving.motion));
 }
@@ -135,8 +178,10 @@ bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
                                 PrimitiveHit& hit) const {
     return stats_.CountIntersect([&] {
         // A moving field is evaluated at the ray's time; the hit keeps it for Normal.
-        const RayTimeScope time(whole_.Motion() ? ray.time : kNoRayTime);
-        const std::optional<MethodHit> found = method_->Intersect(ray, tMin, tMax);
+        const TimeSlice* slice = SliceAt(ray.time);
+        const RayTimeScope time(slice ? ray.time : kNoRayTime);
+        const std::optional<MethodHit> found =
+            (slice ? *slice->method : *method_).Intersect(ray, tMin, tMax);
         if (!found) return false;
         hit.t = found->t;
         hit.a = ray.time;
@@ -146,9 +191,12 @@ bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
 }
 
 SurfaceNormals ImplicitSurface::Normal(const Vec3& p, const PrimitiveHit& hit) const {
-    const RayTimeScope time(whole_.Motion() ? hit.a : kNoRayTime);
+    const TimeSlice* slice = SliceAt(hit.a);
+    const RayTimeScope time(slice ? hit.a : kNoRayTime);
     const bool hasPart = hit.part >= 0 && hit.part < static_cast<int>(termOfPart_.size());
-    const Vec3 n = method_->Normal(whole_, p, hasPart ? termOfPart_[hit.part] : -1);
+    const int own = hasPart ? termOfPart_[hit.part] : -1;
+    const Vec3 n =
+        slice ? slice->method->Normal(slice->field, p, own) : method_->Normal(whole_, p, own);
     return {n, n, false};
 }
 
