@@ -6,6 +6,7 @@ closed, `starttime` = the time): the same hit or miss, and t within 1e-6 (the sc
 tolerance is 1e-8). A control run asks the moving scene at the frame's start time instead
 and must disagree on some rays, so the check can fail.
 Usage: motion_rayquery.py RAYQUERY SCENE WORKDIR"""
+import concurrent.futures
 import math
 import os
 import random
@@ -46,12 +47,23 @@ def agree(a, b):
 
 moving = run(scene, [line(o, d, " 0 1e14 %r" % t) for o, d, t in queries])
 at_start = run(scene, [line(o, d) for o, d, _ in queries])
-failures, hits, control_differs = 0, 0, 0
-for k, (o, d, t) in enumerate(queries):
-    static_path = os.path.join(work, "static.ray")
+
+
+def static_answer(k):
+    o, d, t = queries[k]
+    static_path = os.path.join(work, "static%d.ray" % k)
     with open(static_path, "w") as f:
         f.write(text.replace("shutter 1\n", "starttime %r\n" % t))
-    static = run(static_path, [line(o, d)])[0]
+    answer = run(static_path, [line(o, d)])[0]
+    os.remove(static_path)
+    return answer
+
+
+with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+    statics = list(pool.map(static_answer, range(len(queries))))
+failures, hits, control_differs = 0, 0, 0
+for k, (o, d, t) in enumerate(queries):
+    static = statics[k]
     hits += static[0] == "hit"
     if not agree(moving[k], static):
         failures += 1
