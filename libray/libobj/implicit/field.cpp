@@ -204,6 +204,27 @@ FieldBound Field::Bound(const Bounds3& box, std::span<const int32_t> terms,
     return fb;
 }
 
+void Field::ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& lo,
+                         double& hi) const {
+    const TermTable& table = *table_;
+    lo = hi = 0;
+    for (const int i : terms) {
+        if (!MayReach(table.support[i], p)) continue;
+        const FieldTerm& t = table.terms[i];
+        const double d = SkeletonDistance(t.skeleton, p), reach = TermReach(i);
+        const double near = t.kernel.Value(std::max(0.0, d - reach)), far = t.kernel.Value(d + reach);
+        double wLo, wHi;
+        WeightRange(i, wLo, wHi);
+        lo += std::min({wLo * near, wLo * far, wHi * near, wHi * far});
+        hi += std::max({wLo * near, wLo * far, wHi * near, wHi * far});
+    }
+    if (deformation_) {
+        const double v = deformation_->Value(p);
+        lo += v;
+        hi += v;
+    }
+}
+
 void Field::TermRange(int i, const Bounds3& box, double& lo, double& hi) const {
     const FieldTerm& t = table_->terms[i];
     if (!MayReach(table_->support[i], box)) {

@@ -153,6 +153,11 @@ class Field {
     // both; termRanges is resized to terms.size()).
     FieldBound Bound(const Bounds3& box, std::span<const int32_t> terms,
                      std::vector<TermValueRange>* termRanges) const;
+    // [lo, hi] containing F(p) at every time of a moving field's shutter interval, from
+    // the listed rows (as for Value(p, terms)) and the deformation's value: each term's
+    // weight range times the kernel at d_ref(p) ∓ reach (f is monotone). A cheap point
+    // version of Bound's value range, for the octree build.
+    void ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& lo, double& hi) const;
     // [lo, hi] containing w_i f_i(d_i(p)) for every p in the box (f is monotone in d), row i.
     void TermRange(int i, const Bounds3& box, double& lo, double& hi) const;
 

@@ -20,16 +20,17 @@ const char kImplicitUsage[] =
 size_t DeclaredNumbers::Add(AnimatedValue v) {
     const size_t index = values_.size();
     values_.push_back(v.value);
-    if (v.IsAnimated()) animated_.push_back({index, std::move(v)});
+    if (v.IsAnimated()) {
+        slot_.resize(index + 1, -1);
+        slot_[index] = static_cast<int32_t>(animated_.size());
+        animated_.push_back(std::move(v));
+    }
     return index;
 }
 
 const AnimatedValue* DeclaredNumbers::Animated(size_t index) const {
-    if (animated_.empty()) return nullptr;
-    const auto it = std::lower_bound(
-        animated_.begin(), animated_.end(), index,
-        [](const IndexedValue& a, size_t i) { return a.index < i; });
-    return it != animated_.end() && it->index == index ? &it->value : nullptr;
+    if (index >= slot_.size() || slot_[index] < 0) return nullptr;
+    return &animated_[slot_[index]];
 }
 
 std::pair<double, double> DeclaredNumbers::Range(size_t index, double t0, double t1) const {

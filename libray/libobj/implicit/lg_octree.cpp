@@ -363,9 +363,9 @@ LGOctree::Ref LGOctree::Build(const Bounds3& box, int depth, LatticePoint low,
     // 1 then needs it beyond b·L at every time, from its range at the centre over time.
     double gcLo = gc, gcHi = gc;
     if (field_.Motion()) {
-        const FieldBound at = field_.Bound(Bounds3(centre, centre), terms, nullptr);
-        gcLo = at.valueMin - threshold_;
-        gcHi = at.valueMax - threshold_;
+        field_.ValueRangeAt(centre, terms, gcLo, gcHi);
+        gcLo -= threshold_;
+        gcHi -= threshold_;
         mark = gcLo > 0 ? kFullRef : kEmptyRef;
     }
     if (s.useHeuristic1 && (gcLo > b * fb.L || gcHi < -b * fb.L)) {

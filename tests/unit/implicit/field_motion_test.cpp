@@ -109,6 +109,10 @@ TEST(FieldMotion, SweptBoundsHoldAtEverySampledPointAndTime) {
                 EXPECT_GE(v, fb.valueMin - slack);
                 EXPECT_LE(v, fb.valueMax + slack);
                 EXPECT_LE(Length(moving.Gradient(p)), fb.L + 1e-9);
+                double atLo, atHi;
+                moving.ValueRangeAt(p, moving.Rows(), atLo, atHi);
+                EXPECT_GE(v, atLo - slack);
+                EXPECT_LE(v, atHi + slack);
                 for (int i = 0; i < moving.Size(); ++i) {
                     const double tv = moving.TermValue(i, p);
                     double lo, hi;
