@@ -89,6 +89,12 @@ void ImplicitSurface::Build() {
         partOfTerm_[i] = static_cast<int>(termOfPart_.size());
         termOfPart_.push_back(static_cast<int>(i));
     }
+    if (!slices_.empty() && options_.method == ImplicitMethod::Polynomial) {
+        // Its per-object polynomial terms cannot move: kb89 sums the same field.
+        options_.method = ImplicitMethod::Kb89;
+        options_.octree =
+            MethodOctreeSettings(options_.method, options_.octree, options_.patchesDRatio);
+    }
     methodOptions_ = options_;
     if (whole_.Motion()) methodOptions_.octree.useHeuristic1bis = false;
     const MethodEntry& entry = MethodEntryOf(options_.method);
@@ -110,12 +116,6 @@ void ImplicitSurface::PrepareFrame(double frameTime, double shutter) {
     method_.reset();  // it refers to the terms being replaced
     slices_.clear();
     if (shutter > 0) {
-        if (options_.method == ImplicitMethod::Polynomial) {
-            // Its per-object polynomial terms cannot move: kb89 sums the same field.
-            options_.method = ImplicitMethod::Kb89;
-            options_.octree = MethodOctreeSettings(options_.method, options_.octree,
-                                                   options_.patchesDRatio);
-        }
         MakeTimeSlices(frameTime, frameTime + shutter);
     } else {
         whole_ = Field(termsAt_(frameTime));
@@ -184,7 +184,7 @@ bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
             (slice ? *slice->method : *method_).Intersect(ray, tMin, tMax);
         if (!found) return false;
         hit.t = found->t;
-        hit.a = ray.time;
+        if (slice) hit.a = ray.time;
         hit.part = found->term >= 0 ? partOfTerm_[found->term] : -1;
         return true;
     });
