@@ -47,6 +47,10 @@ AnimatedValue TokenArgReader::ReadAnimatedNumber() {
     ExprPtr e = ReadExpression();
     if (e->IsTimeVarying()) {
         v.at = [e](double time) { return e->Evaluate(time); };
+        v.range = [e](double t0, double t1) {
+            const Expr::Range r = e->EvaluateRange(t0, t1);
+            return std::pair<double, double>(r.lo, r.hi);
+        };
         return v;
     }
     v.value = e->Value();

@@ -57,6 +57,16 @@ class Expr {
     double Cost() const { return cost_; }
     // The value at ray time `time` and the frame set by SetCurrentFrame().
     double Evaluate(double time) const;
+    // An interval [lo, hi] holding Evaluate(t) for every t in [t0, t1] (t0 <= t1), by
+    // interval arithmetic (expression_range.cpp): conservative, every operation's ends
+    // rounded outward by one ulp (two for the <cmath> functions), never NaN. Ends are
+    // infinite where no finite bound is known: a divisor or a power base whose range holds
+    // 0, `%`, tan across a pole, asin/acos beyond [-1, 1], or a function the range
+    // evaluation does not know. Not tight: a variable used twice is bounded twice.
+    struct Range {
+        double lo = 0, hi = 0;
+    };
+    Range EvaluateRange(double t0, double t1) const;
 
   private:
     Expr(Op op, std::vector<ExprPtr> args);

@@ -2,9 +2,10 @@
 
 #include <cmath>
 
+#include "libshade/builtin_functions.h"
+
 namespace rs {
 
-namespace {
 // Wrappers give the overloaded <cmath> functions a single address.
 double Sin(double x) { return std::sin(x); }
 double Cos(double x) { return std::cos(x); }
@@ -14,7 +15,6 @@ double Acos(double x) { return std::acos(x); }
 double Atan(double x) { return std::atan(x); }
 double Sqrt(double x) { return std::sqrt(x); }
 double Hypot(double x, double y) { return std::hypot(x, y); }
-}  // namespace
 
 SymbolTable::SymbolTable() {
     // The original's truncated values (spec §1.4), kept for identical results.

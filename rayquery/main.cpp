@@ -1,6 +1,7 @@
 // rayquery: first hits of world-space rays against a scene (see README.md in this folder).
 //   rayquery [-m METHOD] [-e EPS] [-d DEPTH] [-r DRATIO] [-k STEP] [-H NAME=on|off]
 //            [-f SPREAD [WIDTH]] [-v] SCENE.ray < rays.txt
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -20,8 +21,10 @@ namespace {
 constexpr const char* kUsage =
     "usage: rayquery [-m METHOD] [-e EPS] [-d DEPTH] [-r DRATIO] [-k STEP] [-H NAME=on|off]...\n"
     "                [-f SPREAD [WIDTH]] [-v] SCENE.ray < rays.txt\n"
-    "  each input line: ox oy oz dx dy dz [tmin [tmax]]   (world space; default tmin 0,\n"
-    "                   tmax 1e14; t in units of the given direction; '#' lines skipped)\n"
+    "  each input line: ox oy oz dx dy dz [tmin [tmax [time]]]   (world space; default\n"
+    "                   tmin 0, tmax 1e14; t in units of the given direction; time, the\n"
+    "                   ray time, in [start, start + shutter], default start; '#' lines\n"
+    "                   skipped)\n"
     "  each output line: hit T PX PY PZ NX NY NZ OBJECT PATCH EVALS  |  miss EVALS\n"
     "  -m METHOD  intersection method of every implicit object: auto (the scene default),\n"
     "             patches, kb89, march, sphere, segment, polynomial (blob points and\n"
@@ -137,7 +140,17 @@ int Run(int argc, char** argv) {
                          error.c_str());
             return 1;
         }
-        query.ray.time = time;
+        // The ray time must lie in the frame's exposure, where the scene was prepared.
+        const double shutter = std::max(scene.options.shutter, 0.0);
+        if (query.time && !(*query.time >= time && *query.time <= time + shutter)) {
+            std::fflush(stdout);
+            std::fprintf(stderr,
+                         "rayquery: Error: standard input:%d: time %g is outside the frame's "
+                         "exposure [%g, %g] (scene start time and shutter)\n",
+                         lineNumber, *query.time, time, time + shutter);
+            return 1;
+        }
+        query.ray.time = query.time.value_or(time);
         // In units of t (ray.h): a world width divided by |d|; the spread is a ratio.
         query.ray.footprintWidth = width / rs::Length(query.ray.dir);
         query.ray.footprintSpread = spread;

@@ -37,9 +37,10 @@ bool ParseQueryLine(const std::string& line, QueryRay& query, std::string& error
         }
         numbers.push_back(v);
     }
-    if (numbers.size() < 6 || numbers.size() > 8) {
-        error = StringPrintf("expected 'ox oy oz dx dy dz [tmin [tmax]]' (6 to 8 numbers), got %zu",
-                             numbers.size());
+    if (numbers.size() < 6 || numbers.size() > 9) {
+        error = StringPrintf(
+            "expected 'ox oy oz dx dy dz [tmin [tmax [time]]]' (6 to 9 numbers), got %zu",
+            numbers.size());
         return false;
     }
     query = QueryRay();
@@ -47,6 +48,7 @@ bool ParseQueryLine(const std::string& line, QueryRay& query, std::string& error
     query.ray.dir = {numbers[3], numbers[4], numbers[5]};
     if (numbers.size() > 6) query.tMin = numbers[6];
     if (numbers.size() > 7) query.tMax = numbers[7];
+    if (numbers.size() > 8) query.time = numbers[8];
     if (LengthSquared(query.ray.dir) == 0) {
         error = "the direction is zero";
         return false;

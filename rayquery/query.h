@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "libcommon/ray.h"
@@ -20,10 +21,11 @@ inline constexpr double kQueryDefaultTMax = 1e14;
 struct QueryRay {
     Ray ray;  // world space; dir need not be unit length
     double tMin = kQueryDefaultTMin, tMax = kQueryDefaultTMax;
+    std::optional<double> time;  // the ray time, when the line gives one
 };
 
-// Parses `ox oy oz dx dy dz [tmin [tmax]]` (whitespace separated, finite numbers, non-zero
-// direction, tmin < tmax). Returns false with a message (without the line number) on
+// Parses `ox oy oz dx dy dz [tmin [tmax [time]]]` (whitespace separated, finite numbers,
+// non-zero direction, tmin < tmax). Returns false with a message (without the line number) on
 // malformed input. Blank lines and lines whose first non-blank character is '#' are for
 // the caller to skip (IsQueryComment).
 bool ParseQueryLine(const std::string& line, QueryRay& query, std::string& error);

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "libcommon/data_file.h"
 #include "libcommon/error.h"
@@ -23,6 +24,9 @@ struct Surface;
 struct AnimatedValue {
     double value = 0;                  // the value when not animated
     std::function<double(double)> at;  // empty when static; else value at a time
+    // When animated: an interval [lo, hi] holding at(t) for every t in [t0, t1], or
+    // infinite ends where the reader cannot bound the value (see Expr::EvaluateRange).
+    std::function<std::pair<double, double>(double, double)> range;
 
     bool IsAnimated() const { return static_cast<bool>(at); }
     double At(double time) const { return at ? at(time) : value; }

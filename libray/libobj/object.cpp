@@ -80,7 +80,7 @@ void Object::PrepareFrame(double frameTime, double shutter) {
 
     switch (kind_) {
         case Kind::Primitive:
-            primitive_->PrepareFrame(frameTime);
+            primitive_->PrepareFrame(frameTime, shutter);
             bounded_ = primitive_->IsBounded();
             boundsObject_ = primitive_->Bounds();
             break;

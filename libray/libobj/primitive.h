@@ -97,9 +97,11 @@ class Primitive {
     // be asked. Lets CSG classify hits without computing normals.
     virtual int EntersFromHit(const PrimitiveHit& /*hit*/) const { return -1; }
 
-    // Called once per frame before rendering with the frame's start time, so primitives with
-    // time-varying parameters (implicit skeletons) can rebuild their acceleration data.
-    virtual void PrepareFrame(double /*frameTime*/) {}
+    // Called once per frame before rendering with the frame's start time and the shutter's
+    // length (0: closed), so primitives with time-varying parameters (implicit skeletons)
+    // can rebuild their acceleration data, for every ray time in [frameTime, frameTime +
+    // shutter] when the shutter is open.
+    virtual void PrepareFrame(double /*frameTime*/, double /*shutter*/) {}
 };
 
 }  // namespace rs

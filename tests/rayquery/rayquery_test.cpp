@@ -563,7 +563,8 @@ TEST(RayQuery, BadInputIsReportedWithLineNumbers) {
     };
     const Case cases[] = {
         {"0 -5 0 0 1 0\n# comment\n0 -5 0 0 1\n", "standard input:3: expected"},
-        {"0 -5 0 0 1 0 0 1 2\n", "standard input:1: expected"},
+        {"0 -5 0 0 1 0 0 1 0 3\n", "standard input:1: expected"},
+        {"0 -5 0 0 1 0 0 1 2\n", "standard input:1: time 2 is outside the frame's exposure"},
         {"0 -5 0 0 1 zero\n", "standard input:1: 'zero' is not a number"},
         {"0 -5 0 0 0 0\n", "standard input:1: the direction is zero"},
         {"0 -5 0 0 1 0 3 2\n", "standard input:1: tmin 3 is not below tmax 2"},

@@ -215,7 +215,7 @@ class RaySolver {
   public:
     RaySolver(const Field& field, double threshold, const Ray& ray, double tMin, double tMax)
         : field_(field),
-          terms_(field.Terms()),
+          terms_(field.Motion() ? TermsAtRayTime(field, resolved_) : field.Terms()),
           threshold_(threshold),
           ray_(ray),
           origin_(Long(ray.origin)),
@@ -455,7 +455,18 @@ class RaySolver {
         return Search(m, b);
     }
 
+    // A moving field's terms at the ray's time, every one (this reference method does not
+    // need to be fast).
+    static const std::vector<FieldTerm>& TermsAtRayTime(const Field& field,
+                                                        std::vector<FieldTerm>& out) {
+        for (int i = 0; i < static_cast<int>(field.Terms().size()); ++i) {
+            out.push_back(field.TermAt(i));
+        }
+        return out;
+    }
+
     const Field& field_;
+    std::vector<FieldTerm> resolved_;  // before terms_, which may refer to it
     const std::vector<FieldTerm>& terms_;
     Real threshold_;
     const Ray& ray_;

@@ -23,11 +23,18 @@ Bounds3 TermSupportBounds(const FieldTerm& term) {
     return SkeletonBounds(term.skeleton).Padded(term.kernel.Radius());
 }
 
-Field::Field(std::vector<FieldTerm> terms) {
+Field::Field(std::vector<FieldTerm> terms, std::shared_ptr<const FieldMotion> motion) {
     auto table = std::make_shared<TermTable>();
     table->support.reserve(terms.size());
-    for (const FieldTerm& t : terms) table->support.push_back(TermSupportBounds(t));
+    for (size_t i = 0; i < terms.size(); ++i) {
+        Bounds3 support = TermSupportBounds(terms[i]);
+        if (motion && motion->Of(static_cast<int>(i)).moving) {
+            support = support.Padded(motion->Of(static_cast<int>(i)).reach);
+        }
+        table->support.push_back(support);
+    }
     table->terms = std::move(terms);
+    table->motion = std::move(motion);
     rows_.resize(table->terms.size());
     std::iota(rows_.begin(), rows_.end(), 0);
     table_ = std::move(table);
@@ -40,8 +47,33 @@ Field Field::Subset(std::vector<int> rows) const {
     return out;
 }
 
+DistanceRange Field::SweptDistanceRange(int i, const Bounds3& box) const {
+    DistanceRange r = SkeletonDistanceRange(table_->terms[i].skeleton, box);
+    if (const FieldMotion* motion = table_->motion.get(); motion && motion->Of(i).moving) {
+        const double reach = motion->Of(i).reach;
+        r.min = std::max(0.0, r.min - reach);
+        r.max += reach;
+    }
+    return r;
+}
+
+void Field::WeightRange(int i, double& lo, double& hi) const {
+    lo = hi = table_->terms[i].weight;
+    if (const FieldMotion* motion = table_->motion.get(); motion && motion->Of(i).moving) {
+        lo = motion->Of(i).weightLo;
+        hi = motion->Of(i).weightHi;
+    }
+}
+
+double Field::TermLipschitz(int i) const {
+    const Kernel& k = table_->terms[i].kernel;
+    double lo, hi;
+    WeightRange(i, lo, hi);
+    return std::max(std::abs(lo), std::abs(hi)) * k.Bounds(0, k.Radius()).maxSlope;
+}
+
 double Field::TermValue(int i, const Vec3& p) const {
-    const FieldTerm& t = table_->terms[i];
+    const FieldTerm& t = TermAt(i);
     return t.weight * t.kernel.Value(SkeletonDistance(t.skeleton, p));
 }
 
@@ -54,7 +86,8 @@ void Field::Sum(const Vec3& p, const Indices& indices, double* value, Vec3* grad
     Vec3 g;
     for (const int i : indices) {
         if (!MayReach(table.support[i], p)) continue;  // the term and its gradient are exactly 0
-        const FieldTerm& t = table.terms[i];
+        const FieldTerm& t = table.motion ? table.motion->Resolve(i, table.terms[i])
+                                          : table.terms[i];
         // Points, the commonest skeleton, without the variant dispatch (same arithmetic).
         const auto* point = std::get_if<PointSkeleton>(&t.skeleton);
         Vec3 closest;
@@ -115,8 +148,7 @@ void Field::ActiveTerms(const Bounds3& box, std::span<const int32_t> terms,
     const TermTable& table = *table_;
     for (const int i : terms) {
         if (!MayReach(table.support[i], box)) continue;
-        const FieldTerm& t = table.terms[i];
-        if (SkeletonDistanceRange(t.skeleton, box).min < t.kernel.Radius()) out.push_back(i);
+        if (SweptDistanceRange(i, box).min < table.terms[i].kernel.Radius()) out.push_back(i);
     }
 }
 
@@ -133,12 +165,18 @@ FieldBound Field::Bound(const Bounds3& box, std::span<const int32_t> terms,
         const int i = terms[k];
         if (!MayReach(table.support[i], box)) continue;
         const FieldTerm& t = table.terms[i];
-        DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
+        DistanceRange r = SweptDistanceRange(i, box);
         if (r.min >= t.kernel.Radius()) continue;  // f = f' = f'' = 0 on the whole box
         KernelBounds kb = t.kernel.Bounds(r.min, r.max);
-        double w = std::abs(t.weight);
-        double lo = t.weight * (t.weight >= 0 ? kb.valueMin : kb.valueMax);
-        double hi = t.weight * (t.weight >= 0 ? kb.valueMax : kb.valueMin);
+        // w·f over w in [wLo, wHi] (one value for a static term) and f in [fmin, fmax]
+        // (f >= 0): the extremes are products of ends.
+        double wLo, wHi;
+        WeightRange(i, wLo, wHi);
+        double w = std::max(std::abs(wLo), std::abs(wHi));
+        double lo = std::min(wLo * (wLo >= 0 ? kb.valueMin : kb.valueMax),
+                             wHi * (wHi >= 0 ? kb.valueMin : kb.valueMax));
+        double hi = std::max(wLo * (wLo >= 0 ? kb.valueMax : kb.valueMin),
+                             wHi * (wHi >= 0 ? kb.valueMax : kb.valueMin));
         // TermRange's numbers: w·f at the two ends of the distance range, ordered.
         if (termRanges) (*termRanges)[k] = {std::min(lo, hi), std::max(lo, hi)};
         fb.valueMin += lo;
@@ -146,7 +184,11 @@ FieldBound Field::Bound(const Bounds3& box, std::span<const int32_t> terms,
         fb.L += w * kb.maxSlope;
         // max(|f''|, |f'|/r) covers the convex eigenvalues; non-convex kinds add |f'|·X.
         double curvature = kb.maxCurvature;
+        // A moving non-convex skeleton has no curvature bound here: X infinite.
         double extra = ExtraDistanceCurvature(t.skeleton, box);
+        if (table.motion && table.motion->Of(i).moving && !SkeletonIsConvex(t.skeleton)) {
+            extra = std::numeric_limits<double>::infinity();
+        }
         if (extra > 0 && kb.maxSlope > 0) curvature = std::max(curvature, kb.maxSlope * extra);
         fb.G += w * curvature;
         fb.minDistance = std::min(fb.minDistance, r.min);
@@ -162,16 +204,39 @@ FieldBound Field::Bound(const Bounds3& box, std::span<const int32_t> terms,
     return fb;
 }
 
+void Field::ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& lo,
+                         double& hi) const {
+    const TermTable& table = *table_;
+    lo = hi = 0;
+    for (const int i : terms) {
+        if (!MayReach(table.support[i], p)) continue;
+        const FieldTerm& t = table.terms[i];
+        const double d = SkeletonDistance(t.skeleton, p), reach = TermReach(i);
+        const double near = t.kernel.Value(std::max(0.0, d - reach)), far = t.kernel.Value(d + reach);
+        double wLo, wHi;
+        WeightRange(i, wLo, wHi);
+        lo += std::min({wLo * near, wLo * far, wHi * near, wHi * far});
+        hi += std::max({wLo * near, wLo * far, wHi * near, wHi * far});
+    }
+    if (deformation_) {
+        const double v = deformation_->Value(p);
+        lo += v;
+        hi += v;
+    }
+}
+
 void Field::TermRange(int i, const Bounds3& box, double& lo, double& hi) const {
     const FieldTerm& t = table_->terms[i];
     if (!MayReach(table_->support[i], box)) {
         lo = hi = 0;
         return;
     }
-    DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
-    double near = t.weight * t.kernel.Value(r.min), far = t.weight * t.kernel.Value(r.max);
-    lo = std::min(near, far);
-    hi = std::max(near, far);
+    const DistanceRange r = SweptDistanceRange(i, box);
+    double wLo, wHi;
+    WeightRange(i, wLo, wHi);
+    const double near = t.kernel.Value(r.min), far = t.kernel.Value(r.max);
+    lo = std::min({wLo * near, wLo * far, wHi * near, wHi * far});
+    hi = std::max({wLo * near, wLo * far, wHi * near, wHi * far});
 }
 
 Bounds3 Field::SupportBounds() const {

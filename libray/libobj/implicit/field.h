@@ -19,6 +19,13 @@
 // D's value, gradient and bounds (value ranges, L and G of a sum add); the terms, TermValue,
 // TermRange and SupportBounds keep describing the undeformed terms alone (predominance is
 // decided on them).
+//
+// A field may move (field_motion.h: skeleton motion blur): its table then holds reference
+// terms and a FieldMotion. Every box function (Bound, TermRange, ActiveTerms, TermsMeeting,
+// SupportBounds, TermSupport) then holds for every time of the shutter interval: distance
+// ranges widened by each term's reach, weights over their intervals, and X infinite for a
+// moving non-convex kind; every point function (values, gradients, TermValue, TermAt) uses
+// the terms at the calling thread's ray time (RayTimeScope).
 #pragma once
 
 #include <cstdint>
@@ -28,6 +35,7 @@
 #include <vector>
 
 #include "libcommon/stats.h"
+#include "libobj/implicit/field_motion.h"
 #include "libobj/implicit/kernel.h"
 #include "libobj/implicit/skeleton.h"
 
@@ -73,13 +81,31 @@ class FieldDeformation {
 class Field {
   public:
     Field() : Field(std::vector<FieldTerm>{}) {}
-    explicit Field(std::vector<FieldTerm> terms);
+    // With `motion`, `terms` are the reference terms of a moving field (one TermMotion
+    // per term).
+    explicit Field(std::vector<FieldTerm> terms,
+                   std::shared_ptr<const FieldMotion> motion = nullptr);
     // The field of rows `rows` of this field's table (summed in that order, no repeats),
     // sharing the table; without a deformation.
     Field Subset(std::vector<int> rows) const;
 
-    // Every term of the table, indexed by row (a Subset's table holds non-members too).
+    // Every term of the table, indexed by row (a Subset's table holds non-members too); a
+    // moving field's reference terms.
     const std::vector<FieldTerm>& Terms() const { return table_->terms; }
+    // The motion of a moving field, else null.
+    const FieldMotion* Motion() const { return table_->motion.get(); }
+    // Row i's term at the calling thread's ray time (Terms()[i] for a static field).
+    const FieldTerm& TermAt(int i) const {
+        return table_->motion ? table_->motion->Resolve(i, table_->terms[i]) : table_->terms[i];
+    }
+    // The box outside of which row i vanishes (at every time of the shutter interval).
+    const Bounds3& TermSupport(int i) const { return table_->support[i]; }
+    // |w|·max|f'| of row i at every time: its Lipschitz constant in space.
+    double TermLipschitz(int i) const;
+    // How far row i's skeleton may move from its reference (0 for a static field).
+    double TermReach(int i) const {
+        return table_->motion ? table_->motion->Of(i).reach : 0;
+    }
     // The rows this field sums, in summation order.
     const std::vector<int>& Rows() const { return rows_; }
     // Adds (or, with nullptr, removes) the deformation term.
@@ -127,6 +153,11 @@ class Field {
     // both; termRanges is resized to terms.size()).
     FieldBound Bound(const Bounds3& box, std::span<const int32_t> terms,
                      std::vector<TermValueRange>* termRanges) const;
+    // [lo, hi] containing F(p) at every time of a moving field's shutter interval, from
+    // the listed rows (as for Value(p, terms)) and the deformation's value: each term's
+    // weight range times the kernel at d_ref(p) ∓ reach (f is monotone). A cheap point
+    // version of Bound's value range, for the octree build.
+    void ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& lo, double& hi) const;
     // [lo, hi] containing w_i f_i(d_i(p)) for every p in the box (f is monotone in d), row i.
     void TermRange(int i, const Bounds3& box, double& lo, double& hi) const;
 
@@ -136,8 +167,12 @@ class Field {
   private:
     struct TermTable {
         std::vector<FieldTerm> terms;
-        std::vector<Bounds3> support;  // TermSupportBounds of each term
+        std::vector<Bounds3> support;  // TermSupportBounds of each term, padded by its reach
+        std::shared_ptr<const FieldMotion> motion;
     };
+    // Row i's distance range over the box at every time, and its weight interval.
+    DistanceRange SweptDistanceRange(int i, const Bounds3& box) const;
+    void WeightRange(int i, double& lo, double& hi) const;
 
     // The sums of F (into *value) and ∇F (into *gradient) over the rows `indices` yields,
     // as selected; one loop, so ValueAndGradient shares each term's distance.

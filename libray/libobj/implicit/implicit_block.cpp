@@ -12,17 +12,6 @@ namespace rs {
 
 namespace {
 
-bool IsAnimated(const ImplicitDescription& d, const SkeletonSpec& e) {
-    const KernelSpec& k = d.kernels[e.kernel];
-    for (size_t i = e.firstNumber; i < e.firstNumber + e.numberCount; ++i) {
-        if (d.numbers.IsAnimated(i)) return true;
-    }
-    for (int i = 0; i < k.paramCount; ++i) {
-        if (d.numbers.IsAnimated(k.params[i])) return true;
-    }
-    return d.numbers.IsAnimated(e.weight);
-}
-
 Kernel MakeKernel(const KernelSpec& k, const DeclaredNumbers& numbers, double time) {
     const double a = numbers.At(k.params[0], time), b = numbers.At(k.params[1], time);
     switch (k.kind) {
@@ -43,9 +32,28 @@ struct TermError {
     bool Failed() const { return !message.empty(); }
 };
 
-// The skeleton of `e` at `time`, or an error message for invalid parameters.
-std::string MakeSkeleton(const ImplicitDescription& d, const SkeletonSpec& e,
-                         const std::string& name, double time, Skeleton& skeleton) {
+}  // namespace
+
+bool HasAnimatedKernel(const ImplicitDescription& d, size_t index) {
+    const KernelSpec& k = d.kernels[d.skeletons[index].kernel];
+    for (int i = 0; i < k.paramCount; ++i) {
+        if (d.numbers.IsAnimated(k.params[i])) return true;
+    }
+    return false;
+}
+
+bool IsAnimatedSkeleton(const ImplicitDescription& d, size_t index) {
+    const SkeletonSpec& e = d.skeletons[index];
+    for (size_t i = e.firstNumber; i < e.firstNumber + e.numberCount; ++i) {
+        if (d.numbers.IsAnimated(i)) return true;
+    }
+    return HasAnimatedKernel(d, index) || d.numbers.IsAnimated(e.weight);
+}
+
+std::string MakeSkeletonAt(const ImplicitDescription& d, size_t index, double time,
+                           Skeleton& skeleton) {
+    const SkeletonSpec& e = d.skeletons[index];
+    const std::string& name = d.names.Name(index);
     auto n = [&](size_t i) { return d.numbers.At(e.firstNumber + i, time); };
     auto vec = [&n](size_t i) { return Vec3{n(i), n(i + 1), n(i + 2)}; };
     const char* who = name.c_str();
@@ -93,11 +101,13 @@ std::string MakeSkeleton(const ImplicitDescription& d, const SkeletonSpec& e,
     return {};
 }
 
+namespace {
+
 // Builds the term of skeleton `index` at `time`.
 TermError MakeTerm(const ImplicitDescription& d, size_t index, double time, FieldTerm& term) {
     const SkeletonSpec& e = d.skeletons[index];
     const std::string& name = d.names.Name(index);
-    if (std::string error = MakeSkeleton(d, e, name, time, term.skeleton); !error.empty()) {
+    if (std::string error = MakeSkeletonAt(d, index, time, term.skeleton); !error.empty()) {
         return {std::move(error), e.place};
     }
     term.name = name;
@@ -248,7 +258,7 @@ BuiltImplicitBlock BuildImplicitBlock(ImplicitDescription description, ArgReader
     bool animated = false, anyPositive = false;
     for (size_t i = 0; i < built.terms.size(); ++i) {
         const SkeletonSpec& e = d.skeletons[i];
-        animated |= IsAnimated(d, e);
+        animated |= IsAnimatedSkeleton(d, i);
         anyPositive |= built.terms[i].weight > 0 || d.numbers.IsAnimated(e.weight);
     }
     if (!anyPositive) {
@@ -262,10 +272,11 @@ BuiltImplicitBlock BuildImplicitBlock(ImplicitDescription description, ArgReader
         method.line > 0 ? args.FailAtLocation(d.Where(method), error) : args.Fail(error);
     }
     if (animated) {
-        built.termsAt = [description = std::move(description)](double time) {
+        built.description = std::make_shared<const ImplicitDescription>(std::move(description));
+        built.termsAt = [block = built.description](double time) {
             std::vector<FieldTerm> out;
-            if (TermError error = MakeTerms(description, time, out); error.Failed()) {
-                Report(Severity::Abort, description.Where(error.place),
+            if (TermError error = MakeTerms(*block, time, out); error.Failed()) {
+                Report(Severity::Abort, block->Where(error.place),
                        "implicit object at time %g: %s", time, error.message.c_str());
             }
             return out;

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "libcommon/arg_reader.h"
@@ -21,7 +23,19 @@ struct BuiltImplicitBlock {
     ImplicitOptions options;  // the method resolved (never Auto) and checked
     // The terms at a time; set only when some number of the block is time-varying.
     std::function<std::vector<FieldTerm>(double)> termsAt;
+    // The block, kept when termsAt is set (skeleton motion blur rebuilds from it).
+    std::shared_ptr<const ImplicitDescription> description;
 };
+
+// Whether some number of skeleton `index` (its own, its weight's or its kernel's) is
+// time-varying; whether its kernel's are.
+bool IsAnimatedSkeleton(const ImplicitDescription& d, size_t index);
+bool HasAnimatedKernel(const ImplicitDescription& d, size_t index);
+
+// The skeleton of skeleton `index` at `time`, or an error message for invalid parameters
+// (circle radius <= 0 or normal 0, cylinder radius < 0).
+std::string MakeSkeletonAt(const ImplicitDescription& d, size_t index, double time,
+                           Skeleton& skeleton);
 
 // Fails through `args` (at the statement's location) on an unknown name, a pair both
 // blended and in contact, invalid skeleton or kernel parameters, or a method that cannot

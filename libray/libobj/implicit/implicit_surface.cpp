@@ -1,5 +1,7 @@
 #include "libobj/implicit/implicit_surface.h"
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 #include <string>
 #include <utility>
@@ -7,6 +9,7 @@
 
 #include "libcommon/cpu_clock.h"
 #include "libobj/implicit/implicit_block.h"
+#include "libobj/implicit/implicit_motion.h"
 #include "libobj/implicit/implicit_syntax.h"
 #include "libobj/implicit/method_registry.h"
 #include "libobj/object.h"
@@ -34,6 +37,7 @@ std::shared_ptr<Primitive> ImplicitSurface::Create(ArgReader& args) {
     auto surface =
         std::make_shared<ImplicitSurface>(std::move(block.terms), std::move(block.options));
     surface->termsAt_ = std::move(block.termsAt);
+    surface->block_ = std::move(block.description);
     return surface;
 }
 
@@ -91,16 +95,84 @@ void ImplicitSurface::Build() {
         partOfTerm_[i] = static_cast<int>(termOfPart_.size());
         termOfPart_.push_back(static_cast<int>(i));
     }
-    method_ = MethodEntryOf(options_.method).create(whole_, options_, stats_);
-    bounds_ = method_->Bounds(whole_);
+    if (!slices_.empty() && options_.method == ImplicitMethod::Polynomial) {
+        // Its per-object polynomial terms cannot move: kb89 sums the same field.
+        options_.method = ImplicitMethod::Kb89;
+        options_.octree = MethodOctreeHeuristics(options_.method, options_.octree.maxDepth,
+                                                 options_.patchesDRatio);
+    }
+    methodOptions_ = options_;
+    if (whole_.Motion()) methodOptions_.octree.useHeuristic1bis = false;
+    const MethodEntry& entry = MethodEntryOf(options_.method);
+    if (slices_.empty()) {
+        method_ = entry.create(whole_, methodOptions_, stats_);
+        bounds_ = method_->Bounds(whole_);
+    } else {
+        bounds_ = Bounds3();
+        for (TimeSlice& slice : slices_) {
+            slice.method = entry.create(slice.field, methodOptions_, stats_);
+            bounds_.Extend(slice.method->Bounds(slice.field));
+        }
+    }
     stats_.CountPreprocessing(ThreadCpuMicroseconds() - cpuStart);
 }
 
-void ImplicitSurface::PrepareFrame(double frameTime) {
+void ImplicitSurface::PrepareFrame(double frameTime, double shutter) {
     if (!termsAt_) return;
     method_.reset();  // it refers to the terms being replaced
-    whole_ = Field(termsAt_(frameTime));
+    slices_.clear();
+    if (shutter > 0) {
+        MakeTimeSlices(frameTime, frameTime + shutter);
+    } else {
+        whole_ = Field(termsAt_(frameTime));
+    }
     Build();
+}
+
+void ImplicitSurface::MakeTimeSlices(double t0, double t1) {
+    double relativeReach = 0;
+    MovingField(t0, t1, &relativeReach);
+    // Halving the interval about halves the reach of smooth motions.
+    const int count = std::clamp(static_cast<int>(std::ceil(relativeReach / kSliceReach)), 1,
+                                 kMaxTimeSlices);
+    for (int k = 0; k < count; ++k) {
+        const double start = k == 0 ? t0 : slices_.back().end;
+        const double end = k + 1 == count ? t1 : t0 + (t1 - t0) * (k + 1) / count;
+        slices_.push_back({end, MovingField(start, end), nullptr});
+    }
+    whole_ = slices_.front().field;
+}
+
+const ImplicitSurface::TimeSlice* ImplicitSurface::SliceAt(double time) const {
+    if (slices_.empty()) return nullptr;
+    for (const TimeSlice& slice : slices_) {
+        if (time <= slice.end) return &slice;
+    }
+    return &slices_.back();
+}
+
+Field ImplicitSurface::MovingField(double t0, double t1, double* relativeReach) const {
+    const SourceLocation where = block_->Where(block_->skeletons.front().place);
+    if (!options_.contacts.empty() || options_.autoContacts) {
+        Report(Severity::Abort, where,
+               "implicit object: skeleton motion blur (shutter open) does not support "
+               "contacts; close the shutter or remove them");
+    }
+    MovingTerms moving = BuildMovingTerms(block_, termsAt_(0.5 * (t0 + t1)), t0, t1);
+    if (!moving.error.empty()) {
+        Report(Severity::Abort, block_->Where(moving.place),
+               "implicit object, shutter [%g, %g]: %s", t0, t1, moving.error.c_str());
+    }
+    if (relativeReach) {
+        *relativeReach = 0;
+        for (size_t i = 0; i < moving.reference.size(); ++i) {
+            const TermMotion& m = moving.motion->Of(static_cast<int>(i));
+            if (!m.moving) continue;
+            *relativeReach =
+                std::max(*relativeReach, m.reach / moving.reference[i].kernel.Radius());
+        }
+    }
+    return Field(std::move(moving.reference), std::move(moving.motion));
 }
 
 const IntersectionCounters& ImplicitSurface::Counters() const {
@@ -111,17 +183,26 @@ const IntersectionCounters& ImplicitSurface::Counters() const {
 bool ImplicitSurface::Intersect(const Ray& ray, double tMin, double tMax,
                                 PrimitiveHit& hit) const {
     return stats_.CountIntersect([&] {
-        const std::optional<MethodHit> found = method_->Intersect(ray, tMin, tMax);
+        // A moving field is evaluated at the ray's time; the hit keeps it for Normal.
+        const TimeSlice* slice = SliceAt(ray.time);
+        const RayTimeScope time(slice ? ray.time : kNoRayTime);
+        const std::optional<MethodHit> found =
+            (slice ? *slice->method : *method_).Intersect(ray, tMin, tMax);
         if (!found) return false;
         hit.t = found->t;
+        if (slice) hit.a = ray.time;
         hit.part = found->term >= 0 ? partOfTerm_[found->term] : -1;
         return true;
     });
 }
 
 SurfaceNormals ImplicitSurface::Normal(const Vec3& p, const PrimitiveHit& hit) const {
+    const TimeSlice* slice = SliceAt(hit.a);
+    const RayTimeScope time(slice ? hit.a : kNoRayTime);
     const bool hasPart = hit.part >= 0 && hit.part < static_cast<int>(termOfPart_.size());
-    const Vec3 n = method_->Normal(whole_, p, hasPart ? termOfPart_[hit.part] : -1);
+    const int own = hasPart ? termOfPart_[hit.part] : -1;
+    const Vec3 n =
+        slice ? slice->method->Normal(slice->field, p, own) : method_->Normal(whole_, p, own);
     return {n, n, false};
 }
 

@@ -18,6 +18,7 @@
 #include "libcommon/arg_reader.h"
 #include "libobj/implicit/implicit_options.h"
 #include "libobj/implicit/implicit_overrides.h"
+#include "libobj/implicit/implicit_syntax.h"
 #include "libobj/implicit/intersection_method.h"
 #include "libobj/implicit/object_stats.h"
 #include "libobj/primitive.h"
@@ -43,12 +44,25 @@ class ImplicitSurface final : public Primitive {
     bool Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& hit) const override;
     // Shading and geometric normal: the method's (IntersectionMethod::Normal).
     SurfaceNormals Normal(const Vec3& p, const PrimitiveHit& hit) const override;
-    void PrepareFrame(double frameTime) override;
+    // Rebuilds an animated object for the frame: at frameTime with the shutter closed; with
+    // it open, as moving fields over [frameTime, frameTime + shutter] (implicit_motion.h),
+    // each ray then seeing the skeletons at its own time. The shutter is cut into K equal
+    // time slices, each with its own swept bounds and method, K the smallest in 1..8 with
+    // every moving skeleton's reach over a slice at most kSliceReach of its influence
+    // radius (loose swept bounds cost the search more than K builds). Fails (Abort, at the skeleton)
+    // when the motion cannot be bounded or the object uses contacts. Method polynomial,
+    // whose terms cannot move, is replaced by kb89 (the same field) with the shutter open.
+    void PrepareFrame(double frameTime, double shutter) override;
 
     const std::vector<FieldTerm>& Terms() const { return whole_.Terms(); }
     ImplicitMethod Method() const { return options_.method; }
-    // The method searching this object (tests inspect the patches of PatchesMethod).
-    const IntersectionMethod& SearchMethod() const { return *method_; }
+    // The method searching this object (tests inspect the patches of PatchesMethod); with
+    // the shutter open, that of the first time slice.
+    const IntersectionMethod& SearchMethod() const {
+        return slices_.empty() ? *method_ : *slices_.front().method;
+    }
+    // The number of time slices of a moving object (0 when static; see PrepareFrame).
+    int TimeSlices() const { return static_cast<int>(slices_.size()); }
     // Switches the intersection method (and the octree heuristics that go with it, keeping
     // the declared depth, Dratio and tolerance) and rebuilds. Returns an error message,
     // leaving the object unchanged, when the method cannot serve its terms (polynomial).
@@ -62,14 +76,38 @@ class ImplicitSurface final : public Primitive {
     // skeleton at the hit, the patch that method patches would report).
     std::string PatchName(const PrimitiveHit& hit) const;
 
+    static constexpr double kSliceReach = 0.125;
+    static constexpr int kMaxTimeSlices = 8;
+
   private:
     // Makes the method for the current terms and options and counts the time.
     void Build();
+    // The moving field of the animated terms over [t0, t1] (PrepareFrame), and its largest
+    // reach relative to the smallest influence radius of its moving terms.
+    Field MovingField(double t0, double t1, double* relativeReach = nullptr) const;
+    // Cuts [t0, t1] into time slices (PrepareFrame).
+    void MakeTimeSlices(double t0, double t1);
+
+    // One time slice of a moving object: its field over [start, end] of the shutter and
+    // the method searching it; a ray uses the slice holding its time.
+    struct TimeSlice {
+        double end = 0;
+        Field field;
+        std::unique_ptr<IntersectionMethod> method;
+    };
+    const TimeSlice* SliceAt(double time) const;
 
     ImplicitOptions options_;
     ImplicitObjectStats stats_;
     // Rebuilds the terms for a time (set when any parameter is animated).
     std::function<std::vector<FieldTerm>(double)> termsAt_;
+    // The block, for motion blur (set with termsAt_).
+    std::shared_ptr<const ImplicitDescription> block_;
+    // The options the method is made with: options_, but with a moving field without the
+    // octree heuristic 1bis (it decides a whole cell from its centre's value and gradient,
+    // which a moving skeleton changes within the shutter; heuristic 1 uses the centre's
+    // value range over the shutter instead, lg_octree.cpp).
+    ImplicitOptions methodOptions_;
     // The plain sum. Its table holds the object's terms, stored once: the patches' fields
     // share it.
     Field whole_;
@@ -78,8 +116,11 @@ class ImplicitSurface final : public Primitive {
     // others) and the term of each part.
     std::vector<int> partOfTerm_, termOfPart_;
     Bounds3 bounds_;
-    // Holds references to whole_, options_ and stats_: declared after them.
+    // Holds references to whole_, methodOptions_ and stats_: declared after them.
     std::unique_ptr<IntersectionMethod> method_;
+    // With the shutter open (and animated terms), the time slices, in time order; whole_
+    // then shares the first one's terms (Terms(), names) and method_ is null.
+    std::vector<TimeSlice> slices_;
 };
 
 }  // namespace rs

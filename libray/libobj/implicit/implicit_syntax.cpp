@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <limits>
 #include <string_view>
 
 #include "libcommon/error.h"
@@ -19,18 +20,27 @@ const char kImplicitUsage[] =
 size_t DeclaredNumbers::Add(AnimatedValue v) {
     const size_t index = values_.size();
     values_.push_back(v.value);
-    if (v.IsAnimated()) animated_.emplace_back(index, std::move(v.at));
+    if (v.IsAnimated()) {
+        slot_.resize(index + 1, -1);
+        slot_[index] = static_cast<int32_t>(animated_.size());
+        animated_.push_back(std::move(v));
+    }
     return index;
 }
 
-const std::function<double(double)>* DeclaredNumbers::Expression(size_t index) const {
-    if (animated_.empty()) return nullptr;
-    const auto it = std::lower_bound(
-        animated_.begin(), animated_.end(), index,
-        [](const std::pair<size_t, std::function<double(double)>>& a, size_t i) {
-            return a.first < i;
-        });
-    return it != animated_.end() && it->first == index ? &it->second : nullptr;
+const AnimatedValue* DeclaredNumbers::Animated(size_t index) const {
+    if (index >= slot_.size() || slot_[index] < 0) return nullptr;
+    return &animated_[slot_[index]];
+}
+
+std::pair<double, double> DeclaredNumbers::Range(size_t index, double t0, double t1) const {
+    const AnimatedValue* v = Animated(index);
+    if (!v) return {values_[index], values_[index]};
+    if (!v->range) {
+        const double inf = std::numeric_limits<double>::infinity();
+        return {-inf, inf};
+    }
+    return v->range(t0, t1);
 }
 
 namespace {
@@ -411,9 +421,9 @@ std::string BlockReader::UnknownStatement() {
 }
 
 void BlockReader::ReadAll() {
-    const size_t one = d_.numbers.Add({1, {}});  // index 0: the default weight
+    const size_t one = d_.numbers.Add({1, {}, {}});  // index 0: the default weight
     // `field quadratic 1 1 2` (m = k(R − e) = 1) until a `field` statement.
-    d_.kernels.push_back({KernelKind::GascuelQuadratic, {one, one, d_.numbers.Add({2, {}})},
+    d_.kernels.push_back({KernelKind::GascuelQuadratic, {one, one, d_.numbers.Add({2, {}, {}})},
                           3, {}});
     for (;;) {
         const SourceLocation where = args_.NextLocation();

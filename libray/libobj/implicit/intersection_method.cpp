@@ -9,8 +9,8 @@ namespace rs {
 
 Bounds3 PositiveSupportBounds(const Field& field) {
     Bounds3 box;
-    for (const FieldTerm& t : field.Terms()) {
-        if (t.weight > 0) box.Extend(TermSupportBounds(t));
+    for (int i = 0; i < static_cast<int>(field.Terms().size()); ++i) {
+        if (field.Terms()[i].weight > 0) box.Extend(field.TermSupport(i));
     }
     return box;
 }
@@ -56,7 +56,7 @@ Bounds3 IntersectionMethod::Bounds(const Field& whole) const { return PositiveSu
 
 Vec3 AwayFromSkeleton(const Field& field, int own, const Vec3& p) {
     Vec3 closest;
-    SkeletonDistance(field.Terms()[own].skeleton, p, closest);
+    SkeletonDistance(field.TermAt(own).skeleton, p, closest);
     const Vec3 n = Normalize(p - closest);
     return LengthSquared(n) == 0 ? Vec3{0, 0, 1} : n;
 }

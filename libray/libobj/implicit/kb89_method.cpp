@@ -5,9 +5,7 @@ namespace rs {
 Kb89Method::Kb89Method(const Field& whole, double threshold, const OctreeSettings& settings,
                        const ImplicitObjectStats& stats)
     : whole_(whole), threshold_(threshold), settings_(settings), stats_(stats) {
-    for (const FieldTerm& t : whole.Terms()) {
-        if (t.weight > 0) box_.Extend(TermSupportBounds(t));
-    }
+    box_ = PositiveSupportBounds(whole);
 }
 
 std::optional<double> Kb89Method::FirstRoot(const Ray& ray, double tMin, double tMax) const {

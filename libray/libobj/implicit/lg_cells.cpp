@@ -8,6 +8,7 @@
 
 #include "libcommon/error.h"
 #include "libcommon/stats.h"
+#include "libobj/implicit/field_motion.h"
 #include "libobj/implicit/lg_octree.h"
 #include "libobj/implicit/lg_octree_detail.h"
 
@@ -87,7 +88,13 @@ const LGOctree::LazyBlock& LGOctree::Children(const LazyBlock& owner, const Lazy
                                               std::unique_ptr<LazyBlock>& scratch) const {
     if (const LazyBlock* kept = cell.children.load(std::memory_order_acquire)) return *kept;
     auto made = std::make_unique<LazyBlock>();
-    auto expand = [&] { ExpandLazy(*made, box, depth, low, owner.Terms(cell)); };
+    // The expansion sees no ray time, as whole builds do (ImplicitObjectStats::BuildTree):
+    // a moving field's point values are then its reference terms', so the children do not
+    // depend on which ray expands the cell.
+    auto expand = [&] {
+        const RayTimeScope noTime(kNoRayTime);
+        ExpandLazy(*made, box, depth, low, owner.Terms(cell));
+    };
     const CellExpansionObserver* observer = lazy_->store->Observer();
     if (observer) {
         observer->Expand(expand);

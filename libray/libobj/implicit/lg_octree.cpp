@@ -359,6 +359,17 @@ double LGOctree::LatticeValue(const Vec3& p, LatticePoint q, std::span<const int
     return *slot;
 }
 
+// g's range at `centre` over the shutter for a moving field (g = F − T there being `gc` at
+// the current time); {gc, gc} for a static one.
+std::pair<double, double> LGOctree::CentreRangeOverShutter(const Vec3& centre,
+                                                          std::span<const int32_t> terms,
+                                                          double gc) const {
+    if (!field_.Motion()) return {gc, gc};
+    double lo = gc, hi = gc;
+    field_.ValueRangeAt(centre, terms, lo, hi);
+    return {lo - threshold_, hi - threshold_};
+}
+
 template <class Value>
 LGOctree::Decision LGOctree::Decide(const Bounds3& box, int depth, LatticePoint low,
                                     std::span<const int32_t> terms, FieldBound& fb,
@@ -388,8 +399,12 @@ LGOctree::Decision LGOctree::Decide(const Bounds3& box, int depth, LatticePoint 
     // The cell's edge in lattice steps (>= 2 down to maxDepth), and its centre's point.
     const uint32_t edge = 1u << (s.maxDepth + 1 - depth), half = edge / 2;
     double gc = value(centre, LatticePoint{low.x + half, low.y + half, low.z + half}) - threshold_;
-    const Decision mark = gc > 0 ? Decision::Full : Decision::Empty;
-    if (s.useHeuristic1 && std::abs(gc) > b * fb.L) {
+    Decision mark = gc > 0 ? Decision::Full : Decision::Empty;
+    // A moving field's centre value varies within the shutter (field_motion.h): heuristic
+    // 1 then needs it beyond b·L at every time, from its range at the centre over time.
+    const auto [gcLo, gcHi] = CentreRangeOverShutter(centre, terms, gc);
+    if (field_.Motion()) mark = gcLo > 0 ? Decision::Full : Decision::Empty;
+    if (s.useHeuristic1 && (gcLo > b * fb.L || gcHi < -b * fb.L)) {
         Count(c.h1Fired);
         return mark;
     }
@@ -410,7 +425,10 @@ LGOctree::Decision LGOctree::Decide(const Bounds3& box, int depth, LatticePoint 
     // leave the search no curvature bound at all.
     if (depth >= s.minDepth && std::isfinite(fb.G)) {
         if (s.useHeuristic3) {
-            bool anyIn = gc > 0, anyOut = gc <= 0;
+            // A moving field's surface may cross the cell at some time of the shutter
+            // whenever its range straddles T, as it does here: a leaf, as if it crossed.
+            const bool moving = field_.Motion() != nullptr;
+            bool anyIn = gc > 0 || moving, anyOut = gc <= 0 || moving;
             for (int i = 0; i < 8 && !(anyIn && anyOut); ++i) {
                 LatticePoint q{low.x + ((i & 1) ? edge : 0), low.y + ((i & 2) ? edge : 0),
                                low.z + ((i & 4) ? edge : 0)};

@@ -78,6 +78,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "libcommon/constants.h"
@@ -312,6 +313,11 @@ class LGOctree {
     // the cell's bound. value(p, q) gives F at lattice point q (coordinates p). Defined and
     // used in the .cpp only.
     enum class Decision { Empty, Full, Leaf, Subdivide };
+    // g's range at a cell centre over the shutter, given g there now (gc): {gc, gc} unless
+    // the field moves (heuristic 1 of a moving field).
+    std::pair<double, double> CentreRangeOverShutter(const Vec3& centre,
+                                                     std::span<const int32_t> terms,
+                                                     double gc) const;
     template <class Value>
     Decision Decide(const Bounds3& box, int depth, LatticePoint low,
                     std::span<const int32_t> terms, FieldBound& fb, Value&& value) const;

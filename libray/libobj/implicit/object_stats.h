@@ -20,6 +20,7 @@
 
 #include "libcommon/cpu_clock.h"
 #include "libcommon/stats.h"
+#include "libobj/implicit/field_motion.h"
 #include "libobj/implicit/lg_octree.h"
 
 namespace rs {
@@ -45,9 +46,12 @@ class ImplicitObjectStats final : public CellExpansionObserver {
     void CountAutomaticContact() const;
     // Returns build()'s tree (an LGOctree) and attributes its time, cells, memory and the
     // module counters it advanced ("octree ...", "preprocessing ...") to this object,
-    // leaving its evaluations out of the current ray's counts. Thread-safe.
+    // leaving its evaluations out of the current ray's counts. Thread-safe. The build sees
+    // no ray time: a moving field's point values there are its reference terms' (the tree
+    // then does not depend on which ray builds it; its bounds hold at every time).
     template <class Build>
     LGOctree BuildTree(Build&& build) const {
+        const RayTimeScope noTime(kNoRayTime);
         const BuildSnapshot before = TakeBuildSnapshot();
         LGOctree tree = build();
         AttributeBuild(before);

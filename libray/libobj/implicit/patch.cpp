@@ -19,17 +19,7 @@ bool BoxesOverlap(const Bounds3& a, const Bounds3& b) {
 
 Patch::Patch(const Field& object, std::vector<int> members)
     : field_(object.Subset(std::move(members))),
-      box_(TermSupportBounds(object.Terms()[field_.Rows().front()])) {}
-
-namespace {
-
-// |w|·max|f'|: the term's Lipschitz constant in space.
-double TermLipschitz(const FieldTerm& term) {
-    const Kernel& k = term.kernel;
-    return std::abs(term.weight) * k.Bounds(0, k.Radius()).maxSlope;
-}
-
-}  // namespace
+      box_(object.TermSupport(field_.Rows().front())) {}
 
 Patch::Predominance Patch::PredominanceAt(const Vec3& p, double uncertainty) const {
     const std::vector<int>& members = field_.Rows();
@@ -43,8 +33,8 @@ Patch::Predominance Patch::PredominanceAt(const Vec3& p, double uncertainty) con
         // An exact tie keeps its rule (the lowest index wins), so a point computed on a
         // seam still belongs to one patch; only a strictly larger rival is weighed.
         if (other == own || !(uncertainty > 0)) return Predominance::None;
-        if (ownLipschitz < 0) ownLipschitz = TermLipschitz(field_.Terms()[ownIndex]);
-        const double slack = (ownLipschitz + TermLipschitz(field_.Terms()[members[j]])) *
+        if (ownLipschitz < 0) ownLipschitz = field_.TermLipschitz(ownIndex);
+        const double slack = (ownLipschitz + field_.TermLipschitz(members[j])) *
                                  uncertainty +
                              kValueRounding * (std::abs(other) + std::abs(own));
         if (other - own > slack) return Predominance::None;
@@ -57,7 +47,8 @@ bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {
     const FieldTerm& own = field_.Terms()[Own()];
     const double a = LengthSquared(ray.dir);
     if (!(a > 0)) return true;
-    const double reach = own.kernel.Radius() * (1 + kSupportMargin);
+    // A moving skeleton stays within its reach of the reference one used here.
+    const double reach = own.kernel.Radius() * (1 + kSupportMargin) + field_.TermReach(Own());
     // NaNs (overflow) fail every comparison below: true.
     if (const auto* point = std::get_if<PointSkeleton>(&own.skeleton)) {
         const Vec3 oc = ray.origin - point->center;
@@ -205,7 +196,7 @@ std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
     const std::vector<FieldTerm>& terms = object.Terms();
     const int n = static_cast<int>(terms.size());
     std::vector<Bounds3> support(n);
-    for (int i = 0; i < n; ++i) support[i] = TermSupportBounds(terms[i]);
+    for (int i = 0; i < n; ++i) support[i] = object.TermSupport(i);
     // Explicit mode: the declared partners of each term; automatic: the grid above.
     std::vector<std::vector<int>> declared;
     std::optional<NeighbourGrid> grid;

@@ -195,7 +195,7 @@ TEST(ImplicitSurface, AnimatedSkeletonsRebuildPerFrame) {
     ASSERT_TRUE(p);
     Ray ray{{-5, 0, 0}, {1, 0, 0}};
     EXPECT_NEAR(*Hit(*p, ray), 4.5, 1e-7);
-    p->PrepareFrame(1.0);
+    p->PrepareFrame(1.0, 0);
     EXPECT_NEAR(*Hit(*p, ray), 5.5, 1e-7);
     EXPECT_TRUE(p->Bounds().Contains({1.5, 0, 0}));
 }
@@ -220,7 +220,7 @@ TEST(ImplicitSurface, MethodStatementSelectsTheBaselines) {
         EXPECT_EQ(hit.part, -1) << method;
         EXPECT_EQ(surface->PatchName(hit), "") << method;
         EXPECT_NEAR(p->Normal(ray.At(*t), hit).geometric.x, -1, 1e-9) << method;
-        p->PrepareFrame(1.0);
+        p->PrepareFrame(1.0, 0);
         EXPECT_NEAR(*Hit(*p, ray), 5.5, 1e-9) << method;
     }
     TokenReader blended("method sphere point a 0 0 0 point b 1 0 0 blend a b end");
@@ -469,9 +469,9 @@ TEST(ImplicitContact, ContactFollowsAnimation) {
     auto p = Parse("point a -0.8 0 0 point b TIME 0 0 contact a b propagation a 0.3 "
                    "propagation b 0.3 end");
     ASSERT_TRUE(p);
-    p->PrepareFrame(0.8);
+    p->PrepareFrame(0.8, 0);
     EXPECT_NEAR(*Hit(*p, {{0, -5, 0}, {0, 1, 0}}), 4.4, 1e-7);
-    p->PrepareFrame(1.3);
+    p->PrepareFrame(1.3, 0);
     Ray between{{0.25, 0, 0}, {-1, 0, 0}};  // in the gap, towards a's surface at x = 0.2
     EXPECT_NEAR(*Hit(*p, between), 0.05, 1e-7);
     // In that frame a point of the gap between the two undeformed spheres is outside both.

@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libcommon/arg_reader.h"
@@ -33,6 +34,7 @@ class TokenReader final : public ArgReader {
         AnimatedValue v;
         if (Accept("TIME")) {
             v.at = [](double t) { return t; };
+            v.range = [](double t0, double t1) { return std::pair<double, double>(t0, t1); };
         } else {
             v.value = ReadNumber();
         }

@@ -25,7 +25,7 @@ class TestArgReader final : public ArgReader {
         return numbers_[next_++];
     }
     int ReadInt() override { return static_cast<int>(ReadNumber()); }
-    AnimatedValue ReadAnimatedNumber() override { return {ReadNumber(), {}}; }
+    AnimatedValue ReadAnimatedNumber() override { return {ReadNumber(), {}, {}}; }
     bool PeekNumber() override { return next_ < numbers_.size(); }
     bool Accept(const char*) override { return false; }
     bool Peek(const char*) override { return false; }

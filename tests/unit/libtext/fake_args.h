@@ -26,7 +26,7 @@ class FakeArgs : public ArgReader {
         return std::strtod(tokens_[next_++].c_str(), nullptr);
     }
     int ReadInt() override { return static_cast<int>(ReadNumber()); }
-    AnimatedValue ReadAnimatedNumber() override { return {ReadNumber(), {}}; }
+    AnimatedValue ReadAnimatedNumber() override { return {ReadNumber(), {}, {}}; }
     bool PeekNumber() override {
         if (AtEnd()) return false;
         const std::string& t = tokens_[next_];

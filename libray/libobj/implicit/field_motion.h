@@ -1,0 +1,73 @@
+// Layer 4 of the implicit module, beside field.h: the motion of a field's terms during an
+// open shutter (skeleton motion blur).
+//
+// A moving field holds, for each term, a reference term (its skeleton and weight at one
+// time of the shutter interval, conventionally the middle) and a TermMotion that bounds the
+// term over the whole interval [t0, t1]:
+//   - reach ρ: for every t in [t0, t1], every point of the skeleton at t lies within ρ of
+//     the reference skeleton and every reference point within ρ of the skeleton at t (a
+//     Hausdorff bound), so |d_t(p) − d_ref(p)| <= ρ for every p: distance ranges over a box
+//     widen to [max(0, dmin − ρ), dmax + ρ] and support boxes grow by ρ;
+//   - [weightLo, weightHi] holds the weight at every t (of one sign: the builder checks);
+//   - the kernel does not move (animated kernel parameters are refused with the shutter
+//     open).
+// Field::Bound and the other box functions use these swept bounds, so every octree,
+// patch box and neighbour list built from them holds at every time of the shutter. Point
+// evaluations (values, gradients, predominance) use the term at the current ray time:
+// RayTimeScope sets it for the calling thread, and FieldMotion::Resolve makes the term at
+// that time on first use by a ray, caching it per thread (only the terms a ray's search
+// touches are ever evaluated). With no ray time set, Resolve gives the reference term.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace rs {
+
+struct FieldTerm;
+
+struct TermMotion {
+    bool moving = false;  // false: the term is the same at every time
+    double reach = 0;
+    double weightLo = 0, weightHi = 0;
+};
+
+class FieldMotion {
+  public:
+    // Sets term.skeleton and term.weight to their values at `time` for row `row` (the rest
+    // of `term` already holds the reference term's other members).
+    using TermAt = std::function<void(int row, double time, FieldTerm& term)>;
+
+    FieldMotion(std::vector<TermMotion> terms, TermAt termAt);
+
+    const TermMotion& Of(int row) const { return terms_[row]; }
+    // The term of `row` at the calling thread's ray time (RayTimeScope), or `reference`
+    // (the table's term of that row) when the row does not move or no time is set. The
+    // reference stays valid until the same thread resolves terms of a different time.
+    const FieldTerm& Resolve(int row, const FieldTerm& reference) const;
+
+  private:
+    std::vector<TermMotion> terms_;
+    TermAt termAt_;
+    uint64_t id_;  // unique per FieldMotion: the key of the per-thread caches
+};
+
+// The ray time meaning none: reference terms.
+inline constexpr double kNoRayTime = std::numeric_limits<double>::quiet_NaN();
+
+// Sets the ray time the calling thread's field evaluations use, for the scope's lifetime
+// (restoring the previous one after); kNoRayTime (any NaN) means none.
+class RayTimeScope {
+  public:
+    explicit RayTimeScope(double time);
+    ~RayTimeScope();
+    RayTimeScope(const RayTimeScope&) = delete;
+    RayTimeScope& operator=(const RayTimeScope&) = delete;
+
+  private:
+    double previous_;
+};
+
+}  // namespace rs
