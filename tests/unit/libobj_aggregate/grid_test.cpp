@@ -121,6 +121,48 @@ TEST(GridAggregate, FindsTheSameHitsAsAListOnRandomScenes) {
     }
 }
 
+// Sparse scenes in fine grids (two dense clusters in opposite corners, a few small spheres
+// scattered between, a large one at one edge), so most voxels are empty and the walk crosses
+// long runs of them in single moves: every ray finds what the list finds, and occlusion agrees.
+TEST(GridAggregate, CrossingEmptyRunsKeepsEveryHit) {
+    for (uint64_t seed = 1; seed <= 10; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        Rng rng(seed);
+        std::vector<std::shared_ptr<Object>> children;
+        for (int i = 0; i < 60; ++i) {
+            const Vec3 c = i < 25 ? RandomPoint(rng, -10, -8) : i < 50 ? RandomPoint(rng, 8, 10)
+                                                                       : RandomPoint(rng, -10, 10);
+            children.push_back(
+                Object::MakePrimitive(std::make_shared<TestSphere>(c, Uniform(rng, 0.05, 0.3))));
+        }
+        children.push_back(Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{10, -10, 0}, 2)));
+        const int n = 20 + static_cast<int>(rng.Uniform() * 40);
+        auto list = Wrap(std::make_shared<ListAggregate>(), children);
+        auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 7, n / 2 + 3), children);
+        int hits = 0;
+        for (int i = 0; i < 4000; ++i) {
+            const Vec3 origin = RandomPoint(rng, -14, 14);
+            Vec3 dir = RandomDirection(rng);
+            if (i % 2 == 0) {
+                const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
+                dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -0.3, 0.3) - origin);
+            }
+            const Ray ray{origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+            const double tMaxStart = rng.Uniform() < 0.2 ? Uniform(rng, 1, 20) : kFar;
+            double tList = tMaxStart, tGrid = tMaxStart;
+            HitRecord hList, hGrid;
+            const bool fList = list->Intersect(ray, kEpsilon, tList, hList);
+            ASSERT_EQ(fList, grid->Intersect(ray, kEpsilon, tGrid, hGrid)) << "ray " << i;
+            ASSERT_EQ(fList, grid->Occluded(ray, kEpsilon, tMaxStart)) << "ray " << i;
+            if (!fList) continue;
+            ++hits;
+            ASSERT_EQ(tList, tGrid) << "ray " << i;
+            ASSERT_EQ(hList.primitive, hGrid.primitive) << "ray " << i;
+        }
+        EXPECT_GT(hits, 500);
+    }
+}
+
 TEST(GridAggregate, TestsAChildSpanningManyVoxelsOncePerRay) {
     // The grid is [-5, 5]³ in 8×8×8 voxels of 1.25: the big sphere (radius 4) is registered
     // in every voxel; small spheres sit in two opposite corners.
