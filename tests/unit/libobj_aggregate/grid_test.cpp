@@ -76,6 +76,21 @@ Vec3 MaybeAxisParallel(Rng& rng, Vec3 d) {
     return LengthSquared(d) > 0 ? d : Vec3{0, 0, 1};
 }
 
+// Ray number i from a random point of [-reach, reach]³: every other one aimed near (within
+// ±aim) a random bounded child's box centre, so most of those hit; directions not always of
+// unit length, some components snapped to zero.
+Ray RandomRayAmong(Rng& rng, const std::vector<std::shared_ptr<Object>>& children, int i,
+                   double reach, double aim) {
+    const Vec3 origin = RandomPoint(rng, -reach, reach);
+    Vec3 dir = RandomDirection(rng);
+    if (i % 2 == 0) {
+        const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
+        if (target->IsBounded())
+            dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -aim, aim) - origin);
+    }
+    return {origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+}
+
 TEST(GridAggregate, FindsTheSameHitsAsAListOnRandomScenes) {
     for (uint64_t seed = 1; seed <= 40; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
@@ -91,18 +106,8 @@ TEST(GridAggregate, FindsTheSameHitsAsAListOnRandomScenes) {
         EXPECT_EQ(grid->aggregate()->Bounds().hi, list->aggregate()->Bounds().hi);
         int hits = 0;
         for (int i = 0; i < 3000; ++i) {
-            // Origins inside and outside the grid; directions not always unit length, half
-            // of them aimed near a child's centre so that most of those rays hit.
-            const Vec3 origin = RandomPoint(rng, -9, 9);
-            Vec3 dir = RandomDirection(rng);
-            if (i % 2 == 0) {
-                const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
-                if (target->IsBounded()) {
-                    dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -0.2, 0.2) -
-                                    origin);
-                }
-            }
-            const Ray ray{origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+            // Origins inside and outside the grid.
+            const Ray ray = RandomRayAmong(rng, children, i, 9, 0.2);
             const double tMin = rng.Uniform() < 0.2 ? Uniform(rng, 0, 5) : kEpsilon;
             const double tMaxStart = rng.Uniform() < 0.2 ? Uniform(rng, 1, 10) : kFar;
             double tList = tMaxStart, tGrid = tMaxStart;
@@ -141,13 +146,7 @@ TEST(GridAggregate, CrossingEmptyRunsKeepsEveryHit) {
         auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 7, n / 2 + 3), children);
         int hits = 0;
         for (int i = 0; i < 4000; ++i) {
-            const Vec3 origin = RandomPoint(rng, -14, 14);
-            Vec3 dir = RandomDirection(rng);
-            if (i % 2 == 0) {
-                const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
-                dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -0.3, 0.3) - origin);
-            }
-            const Ray ray{origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+            const Ray ray = RandomRayAmong(rng, children, i, 14, 0.3);
             const double tMaxStart = rng.Uniform() < 0.2 ? Uniform(rng, 1, 20) : kFar;
             double tList = tMaxStart, tGrid = tMaxStart;
             HitRecord hList, hGrid;
@@ -239,13 +238,7 @@ TEST(GridAggregate, MailboxesAndBoxRejectionKeepEveryHit) {
         auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 3, n / 2 + 1), children);
         int hits = 0;
         for (int i = 0; i < 2000; ++i) {
-            const Vec3 origin = RandomPoint(rng, -5, 5);
-            Vec3 dir = RandomDirection(rng);
-            if (i % 2 == 0) {
-                const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
-                dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -0.1, 0.1) - origin);
-            }
-            const Ray ray{origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+            const Ray ray = RandomRayAmong(rng, children, i, 5, 0.1);
             const double tMin = rng.Uniform() < 0.2 ? Uniform(rng, 0, 3) : kEpsilon;
             double tBrute = kFar, tGrid = kFar;
             HitRecord hBrute, hGrid;
