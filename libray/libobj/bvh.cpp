@@ -114,19 +114,28 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     int bestAxis = -1, bestBin = 0;
     const double area = HalfArea(box);
     const Vec3 cLo = centroids.lo, cExtent = centroids.Extent();
-    const auto binOf = [&](int item, int a) {
-        const int b = static_cast<int>(kBins * (boxes[item].Center()[a] - cLo[a]) / cExtent[a]);
+    const Vec3 binsPerUnit{kBins / cExtent.x, kBins / cExtent.y, kBins / cExtent.z};
+    const auto binOf = [&](const Vec3& centre, int a) {
+        const int b = static_cast<int>((centre[a] - cLo[a]) * binsPerUnit[a]);
         return b < 0 ? 0 : (b >= kBins ? kBins - 1 : b);
     };
+    // One pass over the items fills the bins of all three axes (each box read once).
+    Bounds3 bins[3][kBins];
+    int counts[3][kBins] = {};
+    for (int i = begin; i < end; ++i) {
+        const Bounds3& itemBox = boxes[items[i]];
+        const Vec3 centre = itemBox.Center();
+        for (int a = 0; a < 3; ++a) {
+            if (!(cExtent[a] > 0)) continue;
+            const int b = binOf(centre, a);
+            ++counts[a][b];
+            bins[a][b].Extend(itemBox);
+        }
+    }
     for (int a = 0; a < 3; ++a) {
         if (!(cExtent[a] > 0)) continue;
-        Bounds3 binBox[kBins];
-        int binCount[kBins] = {};
-        for (int i = begin; i < end; ++i) {
-            const int b = binOf(items[i], a);
-            ++binCount[b];
-            binBox[b].Extend(boxes[items[i]]);
-        }
+        const Bounds3* binBox = bins[a];
+        const int* binCount = counts[a];
         // rightCost[k]: A·N of bins k.. (the right part when splitting before bin k).
         double rightCost[kBins];
         Bounds3 acc;
@@ -152,8 +161,9 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     }
     if (bestAxis < 0) return count <= kMaxSahLeaf ? kSahLeaf : kSahMedian;
     axis = bestAxis;
-    const auto middle = std::partition(items.begin() + begin, items.begin() + end,
-                                       [&](int item) { return binOf(item, bestAxis) < bestBin; });
+    const auto middle =
+        std::partition(items.begin() + begin, items.begin() + end,
+                       [&](int item) { return binOf(boxes[item].Center(), bestAxis) < bestBin; });
     return static_cast<int>(middle - items.begin());
 }
 
