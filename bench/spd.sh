@@ -4,14 +4,18 @@
 # single-threaded at the files' 512x512 with one ray per pixel, and prints CPU seconds, the
 # ratios, primitive tests and rays per second, and how close our pixels are to the original's.
 #
-# Usage: bench/spd.sh [-b build-dir] [-r rounds] [-m modes] [scene ...]
+# Usage: bench/spd.sh [-b build-dir] [-c base-build-dir] [-r rounds] [-m modes] [scene ...]
 #   scenes: balls gears mount teapot tetra tree (default: all)
+#   -c: also run that build's rayshade (e.g. the main branch's), interleaved with ours on
+#       every file, and print its CPU seconds, setup and our ratio to it ("vs base")
 #   modes (comma-separated, default grid,list,default):
 #     grid     NAME.grid.ray (objects in one hand-sized grid): ours, the original, POV-Ray
 #     list     NAME.ray (everything in the top-level list): ours only (the original does
 #              not accelerate the top-level list and takes minutes)
 #     default  NAME.grid.ray without its `sample 1 nojitter` (Rayshade's default adaptive
 #              jittered sampling): ours and the original
+#     threads  NAME.grid.ray at -t 1 and -t 2: wall seconds and the speedup (ours, and the
+#              base build with -c); wall time, so only meaningful on an otherwise idle machine
 #   rounds: every figure is the minimum over this many interleaved rounds (default 1)
 #
 # Our CPU time is the whole process's (user + system, from /usr/bin/time). Its parse/setup
@@ -26,12 +30,14 @@ here="$(cd "$(dirname "$0")/.." && pwd)"
 build="$here/build"
 rounds=1
 modes="grid,list,default"
-while getopts "b:r:m:" opt; do
+base=""
+while getopts "b:c:r:m:" opt; do
   case $opt in
     b) build="$(cd "$OPTARG" && pwd)" ;;
     r) rounds=$OPTARG ;;
     m) modes=$OPTARG ;;
-    *) sed -n '2,24p' "$0" >&2; exit 2 ;;
+    c) base="$(cd "$OPTARG" && pwd)" ;;
+    *) sed -n '2,29p' "$0" >&2; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
@@ -40,7 +46,9 @@ spd="$shared/bench/spd/scenes"
 original="$shared/reference/bin/rayshade-original"
 rayshade="$build/rayshade/rayshade"
 imgdiff="$build/tools/imgdiff/imgdiff"
-for f in "$rayshade" "$imgdiff"; do
+baseRayshade=""
+[ -n "$base" ] && baseRayshade="$base/rayshade/rayshade"
+for f in "$rayshade" "$imgdiff" $baseRayshade; do
   [ -x "$f" ] || { echo "missing $f: build the rayshade and imgdiff targets first" >&2; exit 1; }
 done
 [ -d "$spd" ] || { echo "no SPD scenes at $spd" >&2; exit 1; }
@@ -54,7 +62,7 @@ trap 'rm -rf "$tmp"' EXIT
 # Decompress what the chosen modes need, once.
 for s in "${scenes[@]}"; do
   [ -f "$spd/$s.grid.ray.gz" ] || { echo "unknown scene $s" >&2; exit 2; }
-  zcat "$spd/$s.grid.ray.gz" > "$tmp/$s.grid.ray"
+  zcat "$spd/$s.grid.ray.gz" > "$tmp/$s.grid.ray"  # also what threads mode renders
   [[ ,$modes, == *,list,* ]] && zcat "$spd/$s.ray.gz" > "$tmp/$s.list.ray"
   [[ ,$modes, == *,default,* ]] && grep -v '^sample 1 nojitter' "$tmp/$s.grid.ray" > "$tmp/$s.default.ray"
   [[ ,$modes, == *,grid,* && $have_pov == 1 ]] && zcat "$spd/$s.pov.gz" > "$tmp/$s.pov"
@@ -70,17 +78,30 @@ keep_min() {
 }
 cpu_of() { awk '{ printf "%.3f", $1 + $2 }' "$1"; }
 
-# ours FILE TAG: whole-process and setup CPU, primitive tests, total rays; keeps the image.
+# ours FILE TAG [BINARY]: whole-process and setup CPU, primitive tests, total rays; keeps
+# the image. BINARY defaults to our rayshade.
 ours() {
-  local file=$1 tag=$2
-  (cd "$tmp" && /usr/bin/time -f "%U %S" -o "$tmp/time" "$rayshade" -q -t 1 -V "$tmp/stats" \
+  local file=$1 tag=$2 binary=${3:-$rayshade}
+  (cd "$tmp" && /usr/bin/time -f "%U %S" -o "$tmp/time" "$binary" -q -t 1 -V "$tmp/stats" \
       -O "$tmp/$tag.ours.png" "$file" > /dev/null)
   keep_min "$tag.cpu" "$(cpu_of "$tmp/time")"
   best[$tag.tests]=$(awk -F'\t+' '/^Total prim. intersection tests:/ { split($2, a, " "); print a[1] }' "$tmp/stats")
   best[$tag.rays]=$(awk -F'\t+' '/^Total rays:/ { print $2 }' "$tmp/stats")
-  (cd "$tmp" && /usr/bin/time -f "%U %S" -o "$tmp/time" "$rayshade" -q -t 1 -R 1 1 \
+  (cd "$tmp" && /usr/bin/time -f "%U %S" -o "$tmp/time" "$binary" -q -t 1 -R 1 1 \
       -O "$tmp/setup.png" "$file" > /dev/null)
   keep_min "$tag.setup" "$(cpu_of "$tmp/time")"
+}
+# ours_and_base FILE TAG: ours, then the base build's (as TAG.base) when -c gave one.
+ours_and_base() {
+  ours "$1" "$2"
+  [ -n "$baseRayshade" ] && ours "$1" "$2.base" "$baseRayshade"
+  return 0
+}
+# wall BINARY THREADS FILE KEY: the wall seconds of one render, kept as a minimum.
+wall() {
+  (cd "$tmp" && /usr/bin/time -f "%e" -o "$tmp/time" "$1" -q -t "$2" -O "$tmp/threads.png" \
+      "$3" > /dev/null)
+  keep_min "$4" "$(cat "$tmp/time")"
 }
 orig() {
   local file=$1 tag=$2
@@ -106,14 +127,20 @@ pov() {
 for ((round = 1; round <= rounds; ++round)); do
   for s in "${scenes[@]}"; do
     if [[ ,$modes, == *,grid,* ]]; then
-      ours "$s.grid.ray" "$s.grid"
+      ours_and_base "$s.grid.ray" "$s.grid"
       [ $have_original == 1 ] && orig "$s.grid.ray" "$s.grid"
       [ $have_pov == 1 ] && pov "$s"
     fi
-    [[ ,$modes, == *,list,* ]] && ours "$s.list.ray" "$s.list"
+    [[ ,$modes, == *,list,* ]] && ours_and_base "$s.list.ray" "$s.list"
     if [[ ,$modes, == *,default,* ]]; then
-      ours "$s.default.ray" "$s.default"
+      ours_and_base "$s.default.ray" "$s.default"
       [ $have_original == 1 ] && orig "$s.default.ray" "$s.default"
+    fi
+    if [[ ,$modes, == *,threads,* ]]; then
+      for n in 1 2; do
+        wall "$rayshade" $n "$s.grid.ray" "$s.wall$n"
+        [ -n "$baseRayshade" ] && wall "$baseRayshade" $n "$s.grid.ray" "$s.basewall$n"
+      done
     fi
   done
 done
@@ -128,45 +155,74 @@ ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (a == "" || b == "" || b == 0) pri
 num() { [ -n "${1:-}" ] && echo "$1" || echo -; }
 rate() { awk -v r="$1" -v c="$2" -v s="$3" 'BEGIN { if (r == "" || c - s <= 0) print "-"; else printf "%.2fM", r / (c - s) / 1e6 }'; }
 
+# base_columns TAG: the base build's CPU seconds, setup and our ratio to it (with -c).
+base_columns() {
+  [ -n "$baseRayshade" ] || return 0
+  printf " | %7s %7s %7s" "$(num "${best[$1.base.cpu]:-}")" "$(num "${best[$1.base.setup]:-}")" \
+      "$(ratio "${best[$1.cpu]}" "${best[$1.base.cpu]:-}")"
+}
+base_header() { [ -n "$baseRayshade" ] && printf " | %7s %7s %7s" base "b.setup" "vs base"; return 0; }
+
 echo "SPD, 512x512, one thread, CPU seconds (min of $rounds interleaved round(s)); ratios are ours / theirs"
+[ -n "$baseRayshade" ] && echo "base: $baseRayshade"
 if [[ ,$modes, == *,grid,* ]]; then
   echo
   echo "grid files, one ray per pixel"
-  printf "%-7s %7s %7s %7s | %7s %7s | %7s %7s %7s %7s | %11s %11s %9s %8s\n" scene ours setup render \
+  printf "%-7s %7s %7s %7s | %7s %7s | %7s %7s %7s %7s | %11s %11s %9s %8s" scene ours setup render \
       orig "vs orig" "pov" "trace" "vs pov" "r/trace" "our tests" "orig tests" "rays/s" fid
+  base_header; echo
   for s in "${scenes[@]}"; do
     t=$s.grid c=${best[$s.grid.cpu]} u=${best[$s.grid.setup]}
     r=$(awk -v c="$c" -v u="$u" 'BEGIN { printf "%.3f", c - u }')
-    printf "%-7s %7s %7s %7s | %7s %7s | %7s %7s %7s %7s | %11s %11s %9s %8s\n" "$s" "$c" "$u" "$r" \
+    printf "%-7s %7s %7s %7s | %7s %7s | %7s %7s %7s %7s | %11s %11s %9s %8s" "$s" "$c" "$u" "$r" \
         "$(num "${best[$t.ocpu]:-}")" "$(ratio "$c" "${best[$t.ocpu]:-}")" \
         "$(num "${best[$s.pcpu]:-}")" "$(num "${best[$s.ptrace]:-}")" \
         "$(ratio "$c" "${best[$s.pcpu]:-}")" "$(ratio "$r" "${best[$s.ptrace]:-}")" \
         "$(num "${best[$t.tests]}")" "$(num "${best[$t.otests]:-}")" \
         "$(rate "${best[$t.rays]}" "$c" "$u")" "$(fidelity "$t")"
+    base_columns "$t"; echo
   done
 fi
 if [[ ,$modes, == *,list,* ]]; then
   echo
   echo "list files (no grid), one ray per pixel"
-  printf "%-7s %7s %7s %7s | %9s | %11s %9s\n" scene ours setup render "vs grid" "our tests" "rays/s"
+  printf "%-7s %7s %7s %7s | %9s | %11s %9s" scene ours setup render "vs grid" "our tests" "rays/s"
+  base_header; echo
   for s in "${scenes[@]}"; do
     t=$s.list c=${best[$t.cpu]} u=${best[$t.setup]}
     r=$(awk -v c="$c" -v u="$u" 'BEGIN { printf "%.3f", c - u }')
-    printf "%-7s %7s %7s %7s | %9s | %11s %9s\n" "$s" "$c" "$u" "$r" \
+    printf "%-7s %7s %7s %7s | %9s | %11s %9s" "$s" "$c" "$u" "$r" \
         "$(ratio "$c" "${best[$s.grid.cpu]:-}")" "$(num "${best[$t.tests]}")" \
         "$(rate "${best[$t.rays]}" "$c" "$u")"
+    base_columns "$t"; echo
   done
 fi
 if [[ ,$modes, == *,default,* ]]; then
   echo
   echo "grid files, Rayshade's default sampling (adaptive, jittered)"
-  printf "%-7s %7s %7s %7s | %7s %7s | %11s %11s %9s\n" scene ours setup render orig "vs orig" \
+  printf "%-7s %7s %7s %7s | %7s %7s | %11s %11s %9s" scene ours setup render orig "vs orig" \
       "our tests" "orig tests" "rays/s"
+  base_header; echo
   for s in "${scenes[@]}"; do
     t=$s.default c=${best[$t.cpu]} u=${best[$t.setup]}
     r=$(awk -v c="$c" -v u="$u" 'BEGIN { printf "%.3f", c - u }')
-    printf "%-7s %7s %7s %7s | %7s %7s | %11s %11s %9s\n" "$s" "$c" "$u" "$r" \
+    printf "%-7s %7s %7s %7s | %7s %7s | %11s %11s %9s" "$s" "$c" "$u" "$r" \
         "$(num "${best[$t.ocpu]:-}")" "$(ratio "$c" "${best[$t.ocpu]:-}")" \
         "$(num "${best[$t.tests]}")" "$(num "${best[$t.otests]:-}")" "$(rate "${best[$t.rays]}" "$c" "$u")"
+    base_columns "$t"; echo
+  done
+fi
+if [[ ,$modes, == *,threads,* ]]; then
+  echo
+  echo "grid files, wall seconds with one and two threads (speedup = 1 thread / 2 threads)"
+  printf "%-7s %7s %7s %7s" scene "-t 1" "-t 2" speedup
+  [ -n "$baseRayshade" ] && printf " | %7s %7s %7s" "base -t1" "base -t2" speedup
+  echo
+  for s in "${scenes[@]}"; do
+    printf "%-7s %7s %7s %7s" "$s" "${best[$s.wall1]}" "${best[$s.wall2]}" \
+        "$(ratio "${best[$s.wall1]}" "${best[$s.wall2]}")"
+    [ -n "$baseRayshade" ] && printf " | %7s %7s %7s" "${best[$s.basewall1]}" "${best[$s.basewall2]}" \
+        "$(ratio "${best[$s.basewall1]}" "${best[$s.basewall2]}")"
+    echo
   done
 fi

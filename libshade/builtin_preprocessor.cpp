@@ -1,6 +1,7 @@
 #include "libshade/builtin_preprocessor.h"
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <map>
 
@@ -43,10 +44,12 @@ struct Macro {
     }
 };
 
-bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
-bool IsDigit(char c) { return c >= '0' && c <= '9'; }
-bool IsIdentifierStart(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-bool IsIdentifierChar(char c) { return IsIdentifierStart(c) || IsDigit(c); }
+constexpr bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+constexpr bool IsDigit(char c) { return c >= '0' && c <= '9'; }
+constexpr bool IsIdentifierStart(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+constexpr bool IsIdentifierChar(char c) { return IsIdentifierStart(c) || IsDigit(c); }
 
 // An identifier cpp may define on its own: reserved names and the traditional ones.
 bool IsPredefinedByCpp(std::string_view word) {
@@ -61,12 +64,21 @@ bool IsPredefinedByCpp(std::string_view word) {
 bool StartsPpNumber(std::string_view s, size_t i) {
     return IsDigit(s[i]) || (s[i] == '.' && i + 1 < s.size() && IsDigit(s[i + 1]));
 }
+// The characters that continue any pp-number: identifier characters and '.' (looked up in
+// a table: large scenes are mostly numbers).
+constexpr std::array<bool, 256> kPpNumberChars = [] {
+    std::array<bool, 256> table{};
+    for (int c = 0; c < 256; ++c) table[c] = IsIdentifierChar(static_cast<char>(c)) || c == '.';
+    return table;
+}();
 size_t PpNumberEnd(std::string_view s, size_t i) {
     for (++i; i < s.size(); ++i) {
-        const char d = s[i], before = s[i - 1];
+        const char d = s[i];
+        if (kPpNumberChars[static_cast<unsigned char>(d)]) continue;
+        const char before = s[i - 1];
         const bool exponentSign =
             (d == '+' || d == '-') && (before == 'e' || before == 'E' || before == 'p' || before == 'P');
-        if (!IsIdentifierChar(d) && d != '.' && !exponentSign) break;
+        if (!exponentSign) break;
     }
     return i;
 }

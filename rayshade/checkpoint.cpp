@@ -71,11 +71,19 @@ std::string RenderFingerprint(const std::vector<std::string>& args, const std::s
         for (int k = 0; k < count && i + 1 < args.size(); ++k) line += ' ' + args[++i];
         if (a != "-c" && a != "-q" && a != "-v" && a != "-t" && a != "-V" && a != "-F") f += line + '\n';
     }
-    uint64_t hash = 1469598103934665603ULL;  // FNV-1a over the scene file
+    // FNV-1a over the scene file taken 8 bytes at a time (large scenes: one step per byte
+    // cost 3% of their setup), the tail byte by byte; every byte changes the result.
+    uint64_t hash = 1469598103934665603ULL;
     if (std::FILE* in = inputFile.empty() ? nullptr : std::fopen(inputFile.c_str(), "rb")) {
         unsigned char block[65536];
         for (size_t n; (n = std::fread(block, 1, sizeof block, in)) > 0;) {
-            for (size_t i = 0; i < n; ++i) hash = (hash ^ block[i]) * 1099511628211ULL;
+            size_t i = 0;
+            for (; i + 8 <= n; i += 8) {
+                uint64_t word;
+                std::memcpy(&word, block + i, sizeof word);
+                hash = (hash ^ word) * 1099511628211ULL;
+            }
+            for (; i < n; ++i) hash = (hash ^ block[i]) * 1099511628211ULL;
         }
         std::fclose(in);
     }

@@ -1,6 +1,7 @@
 #include "libgeom/bvh.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rs {
 
@@ -26,6 +27,84 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
     input.centres.reserve(boxes.size());
     for (const Bounds3& b : boxes) input.centres.push_back(b.Center());
     BuildNode(items_, 0, static_cast<int>(items_.size()), input, split, 0);
+    wide_.reserve(nodes_.size() / 2 + 1);
+    BuildWide(0);
+    const Bounds3& root = nodes_[0].box;
+    scale_ = std::max({std::fabs(FloatBelow(root.lo.x)), std::fabs(FloatBelow(root.lo.y)),
+                       std::fabs(FloatBelow(root.lo.z)), std::fabs(FloatAbove(root.hi.x)),
+                       std::fabs(FloatAbove(root.hi.y)), std::fabs(FloatAbove(root.hi.z))});
+}
+
+int BoundingVolumeHierarchy::BuildWide(int node) {
+    int lanes[4];
+    int laneCount = 0;
+    if (nodes_[node].count > 0) {
+        lanes[laneCount++] = node;  // a leaf root
+    } else {
+        lanes[laneCount++] = node + 1;
+        lanes[laneCount++] = nodes_[node].right;
+    }
+    while (laneCount < 4) {
+        int widest = -1;
+        double widestArea = -1;
+        for (int k = 0; k < laneCount; ++k) {
+            const Node& lane = nodes_[lanes[k]];
+            if (lane.count > 0) continue;
+            const double area = HalfArea(lane.box);
+            if (area > widestArea) {
+                widestArea = area;
+                widest = k;
+            }
+        }
+        if (widest < 0) break;
+        const int split = lanes[widest];
+        lanes[widest] = split + 1;
+        lanes[laneCount++] = nodes_[split].right;
+    }
+    const int index = static_cast<int>(wide_.size());
+    wide_.emplace_back();
+    for (int k = 0; k < 4; ++k) {
+        int child = 0, count = 0;
+        Bounds3 box;  // empty for unused lanes
+        if (k < laneCount) {
+            const Node& lane = nodes_[lanes[k]];
+            box = lane.box;
+            if (lane.count > 0) {
+                child = lane.first;
+                count = lane.count;
+            } else {
+                child = BuildWide(lanes[k]);  // may move wide_: index, not a reference
+            }
+        }
+        WideNode& w = wide_[index];
+        w.child[k] = child;
+        w.count[k] = count;
+        for (int a = 0; a < 3; ++a) {
+            w.lo[a][k] = box.IsEmpty() ? std::numeric_limits<float>::infinity() : FloatBelow(box.lo[a]);
+            w.hi[a][k] = box.IsEmpty() ? -std::numeric_limits<float>::infinity() : FloatAbove(box.hi[a]);
+        }
+    }
+    return index;
+}
+
+bool BoundingVolumeHierarchy::FloatRay::Set(const Ray& ray, double scale) {
+    constexpr double kMax = std::numeric_limits<float>::max() / 4;
+    constexpr double kMinInverse = std::numeric_limits<float>::min();
+    for (int a = 0; a < 3; ++a) {
+        const double o = ray.origin[a], d = ray.dir[a];
+        const double delta = 0x1p-21 * (std::fabs(o) + scale);
+        if (!(std::fabs(o) + delta < kMax)) return false;
+        const double inv = 1 / d;
+        // d = 0 gives inv = ±inf, and parameters ±inf or NaN (an origin on the plane), which
+        // Clip handles; otherwise 1/d must stay in float's normal range (and away from its
+        // top, so products keep the relative error bound).
+        if (d != 0 && !(std::fabs(inv) >= kMinInverse && std::fabs(inv) <= kMax)) return false;
+        invDir[a] = static_cast<float>(inv);
+        negative[a] = std::signbit(inv);
+        nearOrigin[a] = static_cast<float>(negative[a] ? o - delta : o + delta);
+        farOrigin[a] = static_cast<float>(negative[a] ? o + delta : o - delta);
+    }
+    return true;
 }
 
 int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, int end,
@@ -39,19 +118,28 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     int bestAxis = -1, bestBin = 0;
     const double area = HalfArea(box);
     const Vec3 cLo = centroids.lo, cExtent = centroids.Extent();
-    const auto binOf = [&](int item, int a) {
-        const int b = static_cast<int>(kBins * (input.centres[item][a] - cLo[a]) / cExtent[a]);
+    const Vec3 binsPerUnit{kBins / cExtent.x, kBins / cExtent.y, kBins / cExtent.z};
+    const auto binOf = [&](const Vec3& centre, int a) {
+        const int b = static_cast<int>((centre[a] - cLo[a]) * binsPerUnit[a]);
         return b < 0 ? 0 : (b >= kBins ? kBins - 1 : b);
     };
+    // One pass over the items fills the bins of all three axes (each box read once).
+    Bounds3 bins[3][kBins];
+    int counts[3][kBins] = {};
+    for (int i = begin; i < end; ++i) {
+        const Bounds3& itemBox = input.boxes[items[i]];
+        const Vec3& centre = input.centres[items[i]];
+        for (int a = 0; a < 3; ++a) {
+            if (!(cExtent[a] > 0)) continue;
+            const int b = binOf(centre, a);
+            ++counts[a][b];
+            bins[a][b].Extend(itemBox);
+        }
+    }
     for (int a = 0; a < 3; ++a) {
         if (!(cExtent[a] > 0)) continue;
-        Bounds3 binBox[kBins];
-        int binCount[kBins] = {};
-        for (int i = begin; i < end; ++i) {
-            const int b = binOf(items[i], a);
-            ++binCount[b];
-            binBox[b].Extend(input.boxes[items[i]]);
-        }
+        const Bounds3* binBox = bins[a];
+        const int* binCount = counts[a];
         // rightCost[k]: A·N of bins k.. (the right part when splitting before bin k).
         double rightCost[kBins];
         Bounds3 acc;
@@ -77,8 +165,9 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     }
     if (bestAxis < 0) return count <= kMaxSahLeaf ? kSahLeaf : kSahMedian;
     axis = bestAxis;
-    const auto middle = std::partition(items.begin() + begin, items.begin() + end,
-                                       [&](int item) { return binOf(item, bestAxis) < bestBin; });
+    const auto middle =
+        std::partition(items.begin() + begin, items.begin() + end,
+                       [&](int item) { return binOf(input.centres[item], bestAxis) < bestBin; });
     return static_cast<int>(middle - items.begin());
 }
 

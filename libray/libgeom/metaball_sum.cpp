@@ -60,9 +60,8 @@ struct Event {
 
 // Per-thread scratch of FirstRoot, sized for every span the largest sum seen can give (a
 // ray takes each ball at most once: the loop and the grid walk by construction, the
-// hierarchy because Traverse visits each item once, its depth-overflow fallback, which
-// would revisit them, not triggering for a median-split tree of fewer than 2^60 items; and
-// a ball gives one span, a capsule up to three), so rays neither allocate nor check
+// hierarchy because Traverse visits each item once, also in its fallback for rays beyond
+// single precision; and a ball gives one span, a capsule up to three), so rays neither allocate nor check
 // capacities. The arrays
 // are left uninitialised: only their used prefixes are read, and untouched pages cost
 // nothing.

@@ -130,6 +130,45 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     for (uint32_t i = 0; i < bounded_.size(); ++i) {
         forEachCell(i, [&](int c) { cellItems_[cursor[c]++] = i; });
     }
+    ComputeEmptyRuns();
+}
+
+void GridAggregate::ComputeEmptyRuns() {
+    // The chessboard distance transform by two raster passes over the 26-neighbourhood
+    // (exact for this metric): each pass takes the minimum over the 13 neighbours already
+    // visited in its order, plus one.
+    const int nx = n_[0], ny = n_[1], nz = n_[2];
+    emptyRun_.resize(static_cast<size_t>(nx) * ny * nz);
+    for (size_t c = 0; c < emptyRun_.size(); ++c)
+        emptyRun_[c] = cellStart_[c + 1] > cellStart_[c] ? 0 : kMaxEmptyRun;
+    const auto pass = [&](int dir) {
+        const int z0 = dir > 0 ? 0 : nz - 1, y0 = dir > 0 ? 0 : ny - 1, x0 = dir > 0 ? 0 : nx - 1;
+        for (int z = z0; z >= 0 && z < nz; z += dir) {
+            for (int y = y0; y >= 0 && y < ny; y += dir) {
+                for (int x = x0; x >= 0 && x < nx; x += dir) {
+                    uint8_t& d = emptyRun_[CellIndex(x, y, z)];
+                    if (d == 0) continue;
+                    int best = d;
+                    // Neighbours earlier in this pass's order: the previous slice's nine,
+                    // the previous row's three of this slice, the previous cell of this row.
+                    for (int dz = 0; dz <= 1; ++dz) {
+                        for (int dy = -1; dy <= 1; ++dy) {
+                            for (int dx = -1; dx <= 1; ++dx) {
+                                if (dz == 0 && (dy < 0 || (dy == 0 && dx <= 0))) continue;
+                                const int qx = x - dir * dx, qy = y - dir * dy, qz = z - dir * dz;
+                                if (qx < 0 || qx >= nx || qy < 0 || qy >= ny || qz < 0 || qz >= nz)
+                                    continue;
+                                best = std::min(best, emptyRun_[CellIndex(qx, qy, qz)] + 1);
+                            }
+                        }
+                    }
+                    d = static_cast<uint8_t>(best);
+                }
+            }
+        }
+    };
+    pass(1);
+    pass(-1);
 }
 
 bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const {
@@ -192,6 +231,37 @@ bool GridAggregate::Walk(const Ray& ray, double tMin, double& tMax, Test&& test)
     uint64_t boxTests = 0;
     for (;;) {
         const int c = CellIndex(cell[0], cell[1], cell[2]);
+        if (const int run = emptyRun_[c]; run > 1) {
+            // Every cell within run − 1 steps is empty: leave that cube in one move. The ray
+            // leaves it through axis `exit` at tLeave, entering the cell `run` steps along
+            // that axis; along the others it has crossed the boundaries before tLeave.
+            const int inside = run - 1;
+            double tLeave = std::numeric_limits<double>::infinity();
+            int exit = 0;
+            for (int a = 0; a < 3; ++a) {
+                if (step[a] == 0) continue;
+                const double t = tNext[a] + inside * tDelta[a];
+                if (t < tLeave) {
+                    tLeave = t;
+                    exit = a;
+                }
+            }
+            if (tMax <= tLeave) break;  // the segment ends in empty cells
+            bool left = false;
+            for (int a = 0; a < 3; ++a) {
+                if (step[a] == 0) continue;
+                int k = run;
+                if (a != exit) {
+                    const double crossed = std::ceil((tLeave - tNext[a]) / tDelta[a]);
+                    k = crossed > 0 ? (crossed < inside ? static_cast<int>(crossed) : inside) : 0;
+                }
+                cell[a] += step[a] * k;
+                tNext[a] += k * tDelta[a];
+                left = left || cell[a] < 0 || cell[a] >= n_[a];
+            }
+            if (left) break;
+            continue;
+        }
         for (uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
             const uint32_t id = cellItems_[k];
             uint32_t& mark = marks[id];

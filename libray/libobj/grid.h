@@ -22,7 +22,8 @@ class GridAggregate final : public Aggregate {
     const char* TypeName() const override { return "grid"; }
 
     // Unbounded children are tested first, then the voxels the segment (tMin, tMax) crosses,
-    // front to back, until the nearest hit so far lies within the current voxel. Each bounded
+    // front to back, until the nearest hit so far lies within the current voxel (runs of
+    // empty voxels are crossed in one move). Each bounded
     // child is considered at most once per call (per-thread mailboxes) and tested only when
     // the remaining segment meets its box. Thread-safe.
     // Requires PrepareFrame to have run.
@@ -48,6 +49,8 @@ class GridAggregate final : public Aggregate {
     // The voxel index along `axis` holding coordinate x (clamped to the grid).
     int VoxelOf(double x, int axis) const;
     int CellIndex(int ix, int iy, int iz) const { return (iz * n_[1] + iy) * n_[0] + ix; }
+    // Fills emptyRun_ from the cells' contents.
+    void ComputeEmptyRuns();
 
     int n_[3];
     Bounds3 bounds_;   // union of the bounded children's boxes
@@ -62,6 +65,11 @@ class GridAggregate final : public Aggregate {
     // cellStart_[c + 1].
     std::vector<uint32_t> cellStart_;
     std::vector<uint32_t> cellItems_;
+    // Per cell: 0 when it holds children; otherwise the chessboard distance (in cells, at
+    // most kMaxEmptyRun) to the nearest cell that does, so every cell fewer steps away is
+    // empty and the walk may cross them in one move.
+    static constexpr uint8_t kMaxEmptyRun = 255;
+    std::vector<uint8_t> emptyRun_;
 };
 
 }  // namespace rs

@@ -9,20 +9,20 @@ namespace rs {
 const CounterId Object::kBoundsTests = RegisterCounter("bounding box tests");
 
 std::shared_ptr<Object> Object::MakePrimitive(std::shared_ptr<Primitive> p) {
-    std::shared_ptr<Object> o(new Object(Kind::Primitive));
+    auto o = std::make_shared<Object>(Key{}, Kind::Primitive);
     o->primitive_ = std::move(p);
     o->counters_ = &o->primitive_->Counters();
     return o;
 }
 
 std::shared_ptr<Object> Object::MakeAggregate(std::shared_ptr<Aggregate> a) {
-    std::shared_ptr<Object> o(new Object(Kind::Aggregate));
+    auto o = std::make_shared<Object>(Key{}, Kind::Aggregate);
     o->aggregate_ = std::move(a);
     return o;
 }
 
 std::shared_ptr<Object> Object::MakeInstance(std::shared_ptr<Object> of) {
-    std::shared_ptr<Object> o(new Object(Kind::Instance));
+    auto o = std::make_shared<Object>(Key{}, Kind::Instance);
     o->instanceOf_ = std::move(of);
     return o;
 }

@@ -84,8 +84,14 @@ class Object {
     // keyword ("grid"), or "instance".
     std::string TypeName() const;
 
+    // Only the Make functions can make the key (one allocation holds the node and its count).
+    class Key {
+        friend class Object;
+        Key() = default;
+    };
+    Object(Key, Kind k) : kind_(k) {}
+
   private:
-    explicit Object(Kind k) : kind_(k) {}
 
     // Intersect for a primitive node, with the ray already in the node's object space.
     bool IntersectPrimitive(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const {

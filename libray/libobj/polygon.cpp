@@ -18,15 +18,15 @@ Vec3 Polygon::NewellNormal(const std::vector<Vec3>& v) {
     return n;
 }
 
-Polygon::Polygon(std::vector<Vec3> vertices, bool flip) : vertices_(std::move(vertices)) {
-    normal_ = Normalize(NewellNormal(vertices_));
+Polygon::Polygon(const std::vector<Vec3>& vertices, bool flip) {
+    normal_ = Normalize(NewellNormal(vertices));
     if (flip) normal_ = -normal_;
     Vec3 centroid;
-    for (const Vec3& v : vertices_) {
+    for (const Vec3& v : vertices) {
         centroid += v;
         bounds_.Extend(v);
     }
-    offset_ = Dot(normal_, centroid / static_cast<double>(vertices_.size()));
+    offset_ = Dot(normal_, centroid / static_cast<double>(vertices.size()));
 
     const double ax = std::fabs(normal_.x), ay = std::fabs(normal_.y), az = std::fabs(normal_.z);
     if (ax > ay && ax > az) {
@@ -39,23 +39,24 @@ Polygon::Polygon(std::vector<Vec3> vertices, bool flip) : vertices_(std::move(ve
         axisU_ = 0;
         axisV_ = 1;
     }
-    projU_.reserve(vertices_.size());
-    projV_.reserve(vertices_.size());
-    for (const Vec3& v : vertices_) {
-        projU_.push_back(v[axisU_]);
-        projV_.push_back(v[axisV_]);
+    projected_.reserve(2 * vertices.size());
+    for (const Vec3& v : vertices) {
+        projected_.push_back(v[axisU_]);
+        projected_.push_back(v[axisV_]);
     }
 }
 
 std::shared_ptr<Primitive> Polygon::Create(ArgReader& args) {
-    std::vector<Vec3> vertices;
+    // Reused from polygon to polygon (large scenes have hundreds of thousands).
+    thread_local std::vector<Vec3> vertices;
+    vertices.clear();
     while (args.PeekNumber()) vertices.push_back(args.ReadVector());
     if (vertices.size() < 3) args.Fail("A polygon needs at least three vertices.");
     if (!(LengthSquared(NewellNormal(vertices)) > 0)) {
         args.Warn("Degenerate polygon (no area), discarded.");
         return nullptr;
     }
-    return std::make_shared<Polygon>(std::move(vertices), args.FlipNormals());
+    return std::make_shared<Polygon>(vertices, args.FlipNormals());
 }
 
 const IntersectionCounters& Polygon::Counters() const {
@@ -72,9 +73,10 @@ bool Polygon::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& 
     // the horizontal line through the point that pass to its right (+1) and downward ones
     // passing to its left (−1); non-zero means inside.
     int winding = 0;
-    const size_t count = projU_.size();
+    const size_t count = projected_.size() / 2;
     for (size_t i = 0, j = count - 1; i < count; j = i++) {
-        const double u0 = projU_[j], v0 = projV_[j], u1 = projU_[i], v1 = projV_[i];
+        const double u0 = projected_[2 * j], v0 = projected_[2 * j + 1];
+        const double u1 = projected_[2 * i], v1 = projected_[2 * i + 1];
         const double side = (u1 - u0) * (pv - v0) - (pu - u0) * (v1 - v0);
         if (v0 <= pv) {
             if (v1 > pv && side > 0) ++winding;

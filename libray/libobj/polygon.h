@@ -14,7 +14,7 @@ namespace rs {
 class Polygon final : public Primitive {
   public:
     // Requires ≥ 3 vertices and a non-zero Newell normal (NewellNormal).
-    Polygon(std::vector<Vec3> vertices, bool flip);
+    Polygon(const std::vector<Vec3>& vertices, bool flip);
     // Reads vectors while a number follows. Fewer than 3: args.Fail; a zero Newell normal
     // (no area): warning, nullptr.
     static std::shared_ptr<Primitive> Create(ArgReader& args);
@@ -30,13 +30,13 @@ class Polygon final : public Primitive {
     SurfaceUV UV(const Vec3& p, const Vec3& facingNormal, const PrimitiveHit& hit) const override;
 
   private:
-    std::vector<Vec3> vertices_;
     Vec3 normal_;
     double offset_;  // normal·(vertex centroid)
     // The vertices projected by dropping the normal's dominant axis: coordinates axisU_,
-    // axisV_ of each vertex, used for the winding-number test.
+    // axisV_ of vertex i at projected_[2i], projected_[2i + 1], used for the winding-number
+    // test (the vertices themselves are not kept).
     int axisU_, axisV_;
-    std::vector<double> projU_, projV_;
+    std::vector<double> projected_;
     Bounds3 bounds_;
 };
 

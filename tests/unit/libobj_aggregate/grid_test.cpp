@@ -76,6 +76,21 @@ Vec3 MaybeAxisParallel(Rng& rng, Vec3 d) {
     return LengthSquared(d) > 0 ? d : Vec3{0, 0, 1};
 }
 
+// Ray number i from a random point of [-reach, reach]³: every other one aimed near (within
+// ±aim) a random bounded child's box centre, so most of those hit; directions not always of
+// unit length, some components snapped to zero.
+Ray RandomRayAmong(Rng& rng, const std::vector<std::shared_ptr<Object>>& children, int i,
+                   double reach, double aim) {
+    const Vec3 origin = RandomPoint(rng, -reach, reach);
+    Vec3 dir = RandomDirection(rng);
+    if (i % 2 == 0) {
+        const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
+        if (target->IsBounded())
+            dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -aim, aim) - origin);
+    }
+    return {origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+}
+
 TEST(GridAggregate, FindsTheSameHitsAsAListOnRandomScenes) {
     for (uint64_t seed = 1; seed <= 40; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
@@ -91,18 +106,8 @@ TEST(GridAggregate, FindsTheSameHitsAsAListOnRandomScenes) {
         EXPECT_EQ(grid->aggregate()->Bounds().hi, list->aggregate()->Bounds().hi);
         int hits = 0;
         for (int i = 0; i < 3000; ++i) {
-            // Origins inside and outside the grid; directions not always unit length, half
-            // of them aimed near a child's centre so that most of those rays hit.
-            const Vec3 origin = RandomPoint(rng, -9, 9);
-            Vec3 dir = RandomDirection(rng);
-            if (i % 2 == 0) {
-                const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
-                if (target->IsBounded()) {
-                    dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -0.2, 0.2) -
-                                    origin);
-                }
-            }
-            const Ray ray{origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+            // Origins inside and outside the grid.
+            const Ray ray = RandomRayAmong(rng, children, i, 9, 0.2);
             const double tMin = rng.Uniform() < 0.2 ? Uniform(rng, 0, 5) : kEpsilon;
             const double tMaxStart = rng.Uniform() < 0.2 ? Uniform(rng, 1, 10) : kFar;
             double tList = tMaxStart, tGrid = tMaxStart;
@@ -118,6 +123,42 @@ TEST(GridAggregate, FindsTheSameHitsAsAListOnRandomScenes) {
             for (int k = 0; k + 1 < hList.pathLength; ++k) ASSERT_EQ(hList.path[k], hGrid.path[k]);
         }
         EXPECT_GT(hits, 300);
+    }
+}
+
+// Sparse scenes in fine grids (two dense clusters in opposite corners, a few small spheres
+// scattered between, a large one at one edge), so most voxels are empty and the walk crosses
+// long runs of them in single moves: every ray finds what the list finds, and occlusion agrees.
+TEST(GridAggregate, CrossingEmptyRunsKeepsEveryHit) {
+    for (uint64_t seed = 1; seed <= 10; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        Rng rng(seed);
+        std::vector<std::shared_ptr<Object>> children;
+        for (int i = 0; i < 60; ++i) {
+            const Vec3 c = i < 25 ? RandomPoint(rng, -10, -8) : i < 50 ? RandomPoint(rng, 8, 10)
+                                                                       : RandomPoint(rng, -10, 10);
+            children.push_back(
+                Object::MakePrimitive(std::make_shared<TestSphere>(c, Uniform(rng, 0.05, 0.3))));
+        }
+        children.push_back(Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{10, -10, 0}, 2)));
+        const int n = 20 + static_cast<int>(rng.Uniform() * 40);
+        auto list = Wrap(std::make_shared<ListAggregate>(), children);
+        auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 7, n / 2 + 3), children);
+        int hits = 0;
+        for (int i = 0; i < 4000; ++i) {
+            const Ray ray = RandomRayAmong(rng, children, i, 14, 0.3);
+            const double tMaxStart = rng.Uniform() < 0.2 ? Uniform(rng, 1, 20) : kFar;
+            double tList = tMaxStart, tGrid = tMaxStart;
+            HitRecord hList, hGrid;
+            const bool fList = list->Intersect(ray, kEpsilon, tList, hList);
+            ASSERT_EQ(fList, grid->Intersect(ray, kEpsilon, tGrid, hGrid)) << "ray " << i;
+            ASSERT_EQ(fList, grid->Occluded(ray, kEpsilon, tMaxStart)) << "ray " << i;
+            if (!fList) continue;
+            ++hits;
+            ASSERT_EQ(tList, tGrid) << "ray " << i;
+            ASSERT_EQ(hList.primitive, hGrid.primitive) << "ray " << i;
+        }
+        EXPECT_GT(hits, 500);
     }
 }
 
@@ -197,13 +238,7 @@ TEST(GridAggregate, MailboxesAndBoxRejectionKeepEveryHit) {
         auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 3, n / 2 + 1), children);
         int hits = 0;
         for (int i = 0; i < 2000; ++i) {
-            const Vec3 origin = RandomPoint(rng, -5, 5);
-            Vec3 dir = RandomDirection(rng);
-            if (i % 2 == 0) {
-                const auto& target = children[static_cast<size_t>(rng.Uniform() * children.size())];
-                dir = Normalize(target->BoundsInParent().Center() + RandomPoint(rng, -0.1, 0.1) - origin);
-            }
-            const Ray ray{origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
+            const Ray ray = RandomRayAmong(rng, children, i, 5, 0.1);
             const double tMin = rng.Uniform() < 0.2 ? Uniform(rng, 0, 3) : kEpsilon;
             double tBrute = kFar, tGrid = kFar;
             HitRecord hBrute, hGrid;
