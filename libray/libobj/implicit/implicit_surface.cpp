@@ -95,15 +95,16 @@ void ImplicitSurface::Build() {
         partOfTerm_[i] = static_cast<int>(termOfPart_.size());
         termOfPart_.push_back(static_cast<int>(i));
     }
-    if (!slices_.empty() && options_.method == ImplicitMethod::Polynomial) {
-        // Its per-object polynomial terms cannot move: kb89 sums the same field.
-        options_.method = ImplicitMethod::Kb89;
-        options_.octree = MethodOctreeHeuristics(options_.method, options_.octree.maxDepth,
-                                                 options_.patchesDRatio);
-    }
     methodOptions_ = options_;
+    if (!slices_.empty()) {
+        methodOptions_.method = MethodEntryOf(options_.method).whenMoving;
+        if (methodOptions_.method != options_.method) {
+            methodOptions_.octree = MethodOctreeHeuristics(
+                methodOptions_.method, options_.octree.maxDepth, options_.patchesDRatio);
+        }
+    }
     if (whole_.Motion()) methodOptions_.octree.useHeuristic1bis = false;
-    const MethodEntry& entry = MethodEntryOf(options_.method);
+    const MethodEntry& entry = MethodEntryOf(methodOptions_.method);
     if (slices_.empty()) {
         method_ = entry.create(whole_, methodOptions_, stats_);
         bounds_ = method_->Bounds(whole_);

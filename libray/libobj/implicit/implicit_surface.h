@@ -103,8 +103,8 @@ class ImplicitSurface final : public Primitive {
     std::function<std::vector<FieldTerm>(double)> termsAt_;
     // The block, for motion blur (set with termsAt_).
     std::shared_ptr<const ImplicitDescription> block_;
-    // The options the method is made with: options_, but with a moving field without the
-    // octree heuristic 1bis (it decides a whole cell from its centre's value and gradient,
+    // The options the method is made with: options_, but with a moving field the registry's
+    // method for it (MethodEntry::whenMoving) and no octree heuristic 1bis (it decides a whole cell from its centre's value and gradient,
     // which a moving skeleton changes within the shutter; heuristic 1 uses the centre's
     // value range over the shutter instead, lg_octree.cpp).
     ImplicitOptions methodOptions_;

@@ -34,14 +34,17 @@ std::unique_ptr<IntersectionMethod> MakeKb89(const Field& whole, const ImplicitO
 
 const std::vector<MethodEntry>& MethodRegistry() {
     static const std::vector<MethodEntry> registry = {
-        {ImplicitMethod::Patches, "patches", MakePatches, nullptr},
-        {ImplicitMethod::Kb89, "kb89", MakeKb89, nullptr},
-        {ImplicitMethod::March, "march", Make<MarchMethod>, nullptr},
-        {ImplicitMethod::Sphere, "sphere", Make<SphereMethod>, nullptr},
-        {ImplicitMethod::Segment, "segment", Make<SegmentMethod>, nullptr},
-        {ImplicitMethod::Polynomial, "polynomial", Make<PolynomialMethod>, CheckPolynomialTerms},
-        {ImplicitMethod::Exact, "exact", Make<ExactMethod>, nullptr},
-        {ImplicitMethod::Auto, "auto", nullptr, nullptr},
+        {ImplicitMethod::Patches, "patches", MakePatches, nullptr, ImplicitMethod::Patches},
+        {ImplicitMethod::Kb89, "kb89", MakeKb89, nullptr, ImplicitMethod::Kb89},
+        {ImplicitMethod::March, "march", Make<MarchMethod>, nullptr, ImplicitMethod::March},
+        {ImplicitMethod::Sphere, "sphere", Make<SphereMethod>, nullptr, ImplicitMethod::Sphere},
+        {ImplicitMethod::Segment, "segment", Make<SegmentMethod>, nullptr,
+         ImplicitMethod::Segment},
+        // Its quartics are the terms' at one time: while moving, kb89 sums the same field.
+        {ImplicitMethod::Polynomial, "polynomial", Make<PolynomialMethod>, CheckPolynomialTerms,
+         ImplicitMethod::Kb89},
+        {ImplicitMethod::Exact, "exact", Make<ExactMethod>, nullptr, ImplicitMethod::Exact},
+        {ImplicitMethod::Auto, "auto", nullptr, nullptr, ImplicitMethod::Auto},
     };
     return registry;
 }

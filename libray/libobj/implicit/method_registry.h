@@ -24,6 +24,10 @@ struct MethodEntry {
     // Why the method cannot serve these terms (a message naming a skeleton), or empty; null
     // when every object is accepted.
     std::string (*check)(const std::vector<FieldTerm>& terms);
+    // The method run while the object moves within the shutter (field_motion.h): this one,
+    // or, for a method whose per-object data cannot follow the motion, one searching the
+    // same field that can.
+    ImplicitMethod whenMoving;
 };
 
 // The parameters of the baseline methods (march, sphere, segment, polynomial, exact) in

@@ -206,7 +206,12 @@ TEST(ImplicitMethods, RegistryNamesRoundTrip) {
         EXPECT_STREQ(ImplicitMethodName(m), e.name);
         // No factory: only auto (a rule resolving to another method).
         EXPECT_EQ(e.create == nullptr, m == ImplicitMethod::Auto) << e.name;
+        // The method run while moving has a factory and is its own method while moving.
+        const MethodEntry& moving = MethodEntryOf(e.whenMoving);
+        EXPECT_EQ(moving.create == nullptr, m == ImplicitMethod::Auto) << e.name;
+        EXPECT_EQ(moving.whenMoving, moving.method) << e.name;
     }
+    EXPECT_EQ(MethodEntryOf(ImplicitMethod::Polynomial).whenMoving, ImplicitMethod::Kb89);
     ImplicitMethod m;
     EXPECT_FALSE(ParseImplicitMethod("bisection", m));
     EXPECT_EQ(ImplicitMethodNames(),
