@@ -87,7 +87,7 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
             stats_.CountTree(*trees_[i].Built());
         }
     }
-    if (contacts.empty()) {
+    if (contacts.empty() && patches_.size() > kPerCellMinPatches) {
         const std::size_t perTree = std::min(settings_.memoryBudget,
                                              std::numeric_limits<std::size_t>::max() /
                                                  kCellBudgetTrees);  // no overflow

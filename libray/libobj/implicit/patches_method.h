@@ -9,7 +9,8 @@
 // The octree settings are the object's (its RootSearchSettings and OctreeHeuristics), with
 // each patch's depth chosen from its own skeleton under `octree auto` (AutoMinDepth).
 // Objects with contacts build every tree whole and at once (the contacts measure with
-// them); the others make each tree lazily, per cell.
+// them); the others build each tree lazily: whole, or per cell for objects of more than
+// kPerCellMinPatches patches.
 #pragma once
 
 #include <cstddef>
@@ -54,6 +55,10 @@ class PatchesMethod final : public IntersectionMethod {
     // The per-cell trees of an object keep at most this many times one tree's memory budget
     // (OctreeHeuristics::memoryBudget) of cells between them.
     static constexpr std::size_t kCellBudgetTrees = 4;
+    // Objects with more patches than this grow their trees per cell; the others build each
+    // patch's whole tree when its first ray reaches it. The crossover measured between
+    // 1,000 and 3,000 patches (module README, "Per-cell trees").
+    static constexpr std::size_t kPerCellMinPatches = 2048;
 
     // The octree settings of a patch (the object's, with the auto depth).
     OctreeSettings PatchSettings(const Patch& patch) const;
