@@ -84,10 +84,7 @@ void Field::Sum(const Vec3& p, const Indices& indices, double* value, Vec3* grad
     const TermTable& table = *table_;
     double sum = 0;
     Vec3 g;
-    for (const int i : indices) {
-        if (!MayReach(table.support[i], p)) continue;  // the term and its gradient are exactly 0
-        const FieldTerm& t = table.motion ? table.motion->Resolve(i, table.terms[i])
-                                          : table.terms[i];
+    const auto add = [&](const FieldTerm& t) {
         // Points, the commonest skeleton, without the variant dispatch (same arithmetic).
         const auto* point = std::get_if<PointSkeleton>(&t.skeleton);
         Vec3 closest;
@@ -98,6 +95,17 @@ void Field::Sum(const Vec3& p, const Indices& indices, double* value, Vec3* grad
             if (d > 0 && d < t.kernel.Radius()) {
                 g += (p - closest) * (t.weight * t.kernel.Derivative(d) / d);
             }
+        }
+    };
+    // Two loops, so a static field's pays no test of the motion per term. A term beyond its
+    // support box is skipped: it and its gradient are exactly 0 there.
+    if (const FieldMotion* motion = table.motion.get()) {
+        for (const int i : indices) {
+            if (MayReach(table.support[i], p)) add(motion->Resolve(i, table.terms[i]));
+        }
+    } else {
+        for (const int i : indices) {
+            if (MayReach(table.support[i], p)) add(table.terms[i]);
         }
     }
     if constexpr (kValue) *value = deformation_ ? sum + deformation_->Value(p) : sum;
@@ -161,34 +169,42 @@ FieldBound Field::Bound(const Bounds3& box, std::span<const int32_t> terms,
     const TermTable& table = *table_;
     FieldBound fb;
     fb.minDistance = std::numeric_limits<double>::infinity();
+    const FieldMotion* motion = table.motion.get();
     for (size_t k = 0; k < terms.size(); ++k) {
         const int i = terms[k];
         if (!MayReach(table.support[i], box)) continue;
         const FieldTerm& t = table.terms[i];
-        DistanceRange r = SweptDistanceRange(i, box);
+        // A moving term (field_motion.h): distances widened by its reach, its weight range.
+        const TermMotion* moves = motion && motion->Of(i).moving ? &motion->Of(i) : nullptr;
+        DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
+        if (moves) {
+            r.min = std::max(0.0, r.min - moves->reach);
+            r.max += moves->reach;
+        }
         if (r.min >= t.kernel.Radius()) continue;  // f = f' = f'' = 0 on the whole box
         KernelBounds kb = t.kernel.Bounds(r.min, r.max);
-        // w·f over w in [wLo, wHi] (one value for a static term) and f in [fmin, fmax]
-        // (f >= 0): the extremes are products of ends.
-        double wLo, wHi;
-        WeightRange(i, wLo, wHi);
-        double w = std::max(std::abs(wLo), std::abs(wHi));
-        double lo = std::min(wLo * (wLo >= 0 ? kb.valueMin : kb.valueMax),
-                             wHi * (wHi >= 0 ? kb.valueMin : kb.valueMax));
-        double hi = std::max(wLo * (wLo >= 0 ? kb.valueMax : kb.valueMin),
-                             wHi * (wHi >= 0 ? kb.valueMax : kb.valueMin));
+        // w·f over w in [wLo, wHi] and f in [fmin, fmax] (f >= 0): the extremes are
+        // products of ends (for a static term, of its one weight).
+        const double wLo = moves ? moves->weightLo : t.weight;
+        const double wHi = moves ? moves->weightHi : t.weight;
+        const double w = std::max(std::abs(wLo), std::abs(wHi));
+        double lo = wLo * (wLo >= 0 ? kb.valueMin : kb.valueMax);
+        double hi = wLo * (wLo >= 0 ? kb.valueMax : kb.valueMin);
+        if (moves) {
+            lo = std::min(lo, wHi * (wHi >= 0 ? kb.valueMin : kb.valueMax));
+            hi = std::max(hi, wHi * (wHi >= 0 ? kb.valueMax : kb.valueMin));
+        }
         // TermRange's numbers: w·f at the two ends of the distance range, ordered.
         if (termRanges) (*termRanges)[k] = {std::min(lo, hi), std::max(lo, hi)};
         fb.valueMin += lo;
         fb.valueMax += hi;
         fb.L += w * kb.maxSlope;
-        // max(|f''|, |f'|/r) covers the convex eigenvalues; non-convex kinds add |f'|·X.
+        // max(|f''|, |f'|/r) covers the convex eigenvalues; non-convex kinds add |f'|·X. A
+        // moving non-convex skeleton has no curvature bound here: X infinite.
         double curvature = kb.maxCurvature;
-        // A moving non-convex skeleton has no curvature bound here: X infinite.
-        double extra = ExtraDistanceCurvature(t.skeleton, box);
-        if (table.motion && table.motion->Of(i).moving && !SkeletonIsConvex(t.skeleton)) {
-            extra = std::numeric_limits<double>::infinity();
-        }
+        const double extra = moves && !SkeletonIsConvex(t.skeleton)
+                                 ? std::numeric_limits<double>::infinity()
+                                 : ExtraDistanceCurvature(t.skeleton, box);
         if (extra > 0 && kb.maxSlope > 0) curvature = std::max(curvature, kb.maxSlope * extra);
         fb.G += w * curvature;
         fb.minDistance = std::min(fb.minDistance, r.min);
