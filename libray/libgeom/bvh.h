@@ -88,13 +88,15 @@ class BoundingVolumeHierarchy {
         return found;
     }
 
-    // As Traverse, with children ordered by the parameter at which the ray enters their
-    // boxes rather than by the split axis, and a node skipped once its entry lies beyond the
-    // shrunken tMax. Each box is clipped once, when its parent is visited, and stacked with
-    // its entry `near`: the clip to (tMin, tMax) with a smaller tMax at its turn succeeds
-    // exactly when near <= tMax (near does not depend on the far end, and the slab exits
-    // already passed near). For items that are expensive to visit (an implicit patch may
-    // build its octree), so that the nearest ones come first.
+    // As Traverse (children by entry parameter, a node skipped once its entry lies beyond
+    // the shrunken tMax), but on the binary nodes with exact double box clips, two children
+    // at a time: the walk the implicit patches' evaluation counts are defined by (the wide
+    // walk's float entries can order two patches differently). Each box is clipped once,
+    // when its parent is visited, and stacked with its entry `near`: the clip to
+    // (tMin, tMax) with a smaller tMax at its turn succeeds exactly when near <= tMax (near
+    // does not depend on the far end, and the slab exits already passed near). For items
+    // that are expensive to visit (an implicit patch may build its octree), so that the
+    // nearest ones come first.
     template <class Visit>
     bool TraverseInEntryOrder(const Ray& ray, double tMin, double& tMax, Visit&& visit) const {
         if (nodes_.empty()) return false;

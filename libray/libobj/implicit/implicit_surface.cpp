@@ -132,14 +132,19 @@ void ImplicitSurface::PrepareFrame(double frameTime, double shutter) {
 
 void ImplicitSurface::MakeTimeSlices(double t0, double t1) {
     double relativeReach = 0;
-    MovingField(t0, t1, &relativeReach);
+    Field whole = MovingField(t0, t1, &relativeReach);
     // Halving the interval about halves the reach of smooth motions.
     const int count = std::clamp(static_cast<int>(std::ceil(relativeReach / kSliceReach)), 1,
                                  kMaxTimeSlices);
-    for (int k = 0; k < count; ++k) {
-        const double start = k == 0 ? t0 : slices_.back().end;
-        const double end = k + 1 == count ? t1 : t0 + (t1 - t0) * (k + 1) / count;
-        slices_.push_back({end, MovingField(start, end), nullptr});
+    if (count == 1) {
+        // The whole interval is the one slice: its field is the one just made.
+        slices_.push_back({t1, std::move(whole), nullptr});
+    } else {
+        for (int k = 0; k < count; ++k) {
+            const double start = k == 0 ? t0 : slices_.back().end;
+            const double end = k + 1 == count ? t1 : t0 + (t1 - t0) * (k + 1) / count;
+            slices_.push_back({end, MovingField(start, end), nullptr});
+        }
     }
     whole_ = slices_.front().field;
 }
