@@ -254,19 +254,34 @@ bool InsideBoth(const Patch& a, const Patch& b, double threshold, const Vec3& p)
            a.Predominates(p) && b.Predominates(p);
 }
 
-// VolumesInterpenetrate below `box` at `depth`.
+// False only when the patch's own term predominates nowhere in the box: some neighbour's
+// term exceeds it at every point (the lowest value of that term's range over the box is
+// above the highest of the own term's; TermRange holds at every time of a moving field).
+bool MayPredominateIn(const Patch& patch, const Bounds3& box) {
+    const Field& field = patch.GetField();
+    double ownLo, ownHi;
+    field.TermRange(patch.Own(), box, ownLo, ownHi);
+    for (const int j : patch.Members()) {
+        if (j == patch.Own()) continue;
+        double lo, hi;
+        field.TermRange(j, box, lo, hi);
+        if (lo > ownHi) return false;
+    }
+    return true;
+}
+
+// VolumesInterpenetrate below `box` at `depth`. A cell is cleared where either field stays
+// <= T or either own term cannot predominate (inside the volume of a neighbour that both
+// patches blend with, say).
 bool BothInside(const Patch& a, const Patch& b, double threshold, const Bounds3& box,
                 int depth) {
     if (!(a.GetField().Bound(box).valueMax > threshold)) return false;
     if (!(b.GetField().Bound(box).valueMax > threshold)) return false;
-    const Vec3 c = box.Center();
-    if (InsideBoth(a, b, threshold, c)) return true;
+    if (!MayPredominateIn(a, box) || !MayPredominateIn(b, box)) return false;
+    if (InsideBoth(a, b, threshold, box.Center())) return true;
     if (depth == kInterpenetrationDepth) return false;
     for (int i = 0; i < 8; ++i) {
-        Bounds3 child;
-        child.lo = {(i & 1) ? c.x : box.lo.x, (i & 2) ? c.y : box.lo.y, (i & 4) ? c.z : box.lo.z};
-        child.hi = {(i & 1) ? box.hi.x : c.x, (i & 2) ? box.hi.y : c.y, (i & 4) ? box.hi.z : c.z};
-        if (BothInside(a, b, threshold, child, depth + 1)) return true;
+        if (BothInside(a, b, threshold, Octant(box, i), depth + 1)) return true;
     }
     return false;
 }
@@ -303,9 +318,26 @@ std::vector<ContactPair> AutomaticContacts(const std::vector<Patch>& patches, do
             pairs.push_back({std::min(pa.Own(), pb.Own()), std::max(pa.Own(), pb.Own())});
         }
     }
-    std::sort(pairs.begin(), pairs.end(), [](const ContactPair& x, const ContactPair& y) {
-        return x.a != y.a ? x.a < y.a : x.b < y.b;
-    });
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+}
+
+std::vector<ContactPair> UndeclaredContacts(const std::vector<ContactPair>& found,
+                                            const std::vector<ContactPair>& declared) {
+    std::vector<ContactPair> out;
+    for (const ContactPair& c : found) {
+        const bool named = std::any_of(declared.begin(), declared.end(), [&](const ContactPair& d) {
+            return (d.a == c.a && d.b == c.b) || (d.a == c.b && d.b == c.a);
+        });
+        if (!named) out.push_back(c);
+    }
+    return out;
+}
+
+std::vector<std::pair<int, int>> SeparatePairs(const std::vector<ContactPair>& contacts) {
+    std::vector<std::pair<int, int>> pairs;
+    pairs.reserve(contacts.size());
+    for (const ContactPair& c : contacts) pairs.emplace_back(c.a, c.b);
     return pairs;
 }
 
@@ -344,11 +376,11 @@ ContactPlan PlanContact(const std::vector<FieldTerm>& terms,
                         const std::vector<Propagation>& propagations, double threshold,
                         const std::vector<Patch>& patches, const std::vector<LGOctree>& trees,
                         int patch, const std::vector<int>& opponents) {
-    std::vector<FieldTerm> oppTerms;
-    for (int t : UnionOfMembers(patches, opponents)) oppTerms.push_back(terms[t]);
+    // The opponents' terms as rows of the patches' shared table: a moving field's opponent
+    // moves with it (values at the ray's time, bounds over the whole interval).
     ContactPlan plan;
     plan.result.patch = patch;
-    plan.opponent = Field(std::move(oppTerms));
+    plan.opponent = patches[patch].GetField().Subset(UnionOfMembers(patches, opponents));
     const int own = patches[patch].Own();
     for (const Propagation& prop : propagations) {
         if (prop.term != own || !(prop.width > 0)) continue;

@@ -53,6 +53,16 @@
 // itself as the distance (instead of firing a ray per evaluation, as the paper's renderer
 // did) keeps D_A C¹ with computable L and G, and costs one opponent evaluation.
 //
+// Moving skeletons (shutter open, field_motion.h): the opponent field is made of rows of
+// the patches' own (moving) term table, so f_A and O_A are both evaluated at the ray's time
+// and their box bounds hold over the whole time interval of the build; the zone box and
+// the affected box, grown from those bounds, hold over it too. Compression is therefore
+// exact at every time: a ray sees the deformation of the skeletons at its own time. The
+// zone width w and the bulge switch are measured once per build, by the ray above, on the
+// reference terms (the middle of the time slice): within one slice the bulge keeps that
+// field width (exact under a common translation or rotation of the pair, which leaves the
+// measure unchanged; otherwise the width of the slice's middle).
+//
 // Bounds (ContactDeformation::Bound, for a box with opponent bounds O ∈ [Omin, Omax], L_O,
 // G_O): u ∈ [T − Omax, T − Omin]; δ's value range and max|δ'|, max|δ''| over that interval
 // (BulgeProfile::Bounds, exact: δ is unimodal and the extrema of δ', δ'' are at the ends of
@@ -66,7 +76,9 @@
 // point with O_A > T − w, so evaluations and bounds outside it skip the opponent entirely.
 #pragma once
 
+#include <compare>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "libobj/implicit/lg_octree.h"
@@ -130,6 +142,8 @@ class ContactDeformation final : public FieldDeformation {
 // `contact A B`: the global term indices of the two own skeletons.
 struct ContactPair {
     int a = -1, b = -1;
+    // By a, then b.
+    auto operator<=>(const ContactPair&) const = default;
 };
 
 // `propagation Name Width [Height]`: the attenuation zone of the patch owned by `term`, of
@@ -158,7 +172,9 @@ struct DeformedPatch {
 // point is on both surfaces' inner side). Searched by subdividing the overlap of the two
 // patch boxes, down to depth kInterpenetrationDepth (cells of 1/128 of its edges): a cell
 // where either field stays <= T (Field::Bound) is cleared, and each cell's centre is tested.
-// A "yes" is certain; an interpenetration thinner than the finest cells can be missed.
+// A cell where either own term cannot predominate (some neighbour's term range over the
+// cell lies above the own term's) is cleared too. A "yes" is certain; an interpenetration
+// thinner than the finest cells can be missed.
 bool VolumesInterpenetrate(const Patch& a, const Patch& b, double threshold);
 inline constexpr int kInterpenetrationDepth = 7;
 
@@ -166,6 +182,13 @@ inline constexpr int kInterpenetrationDepth = 7;
 // member of the other's patch) and whose undeformed volumes interpenetrate, as term index
 // pairs (a < b) in increasing order.
 std::vector<ContactPair> AutomaticContacts(const std::vector<Patch>& patches, double threshold);
+
+// The pairs of `found` that `declared` does not name (in either order), in found's order.
+std::vector<ContactPair> UndeclaredContacts(const std::vector<ContactPair>& found,
+                                            const std::vector<ContactPair>& declared);
+
+// The pairs as BuildPatches' separatePairs: patches in contact never blend.
+std::vector<std::pair<int, int>> SeparatePairs(const std::vector<ContactPair>& contacts);
 
 // Deforms every patch whose own term appears in a contact pair (pairs naming a term without
 // a patch are ignored) and rebuilds its octree on the deformed field, unless its affected

@@ -12,6 +12,7 @@
 #include "libobj/implicit/implicit_motion.h"
 #include "libobj/implicit/implicit_syntax.h"
 #include "libobj/implicit/method_registry.h"
+#include "libobj/implicit/patch.h"
 #include "libobj/object.h"
 
 namespace rs {
@@ -104,6 +105,13 @@ void ImplicitSurface::Build() {
         }
     }
     if (whole_.Motion()) methodOptions_.octree.useHeuristic1bis = false;
+    if (!slices_.empty() && methodOptions_.autoContacts) {
+        // The frame's pairs were found once over the whole shutter (MakeTimeSlices): every
+        // slice gets them as declared pairs.
+        methodOptions_.autoContacts = false;
+        methodOptions_.contacts.insert(methodOptions_.contacts.end(), frameContacts_.begin(),
+                                       frameContacts_.end());
+    }
     const MethodEntry& entry = MethodEntryOf(methodOptions_.method);
     if (slices_.empty()) {
         method_ = entry.create(whole_, methodOptions_, stats_);
@@ -136,6 +144,10 @@ void ImplicitSurface::MakeTimeSlices(double t0, double t1) {
     // Halving the interval about halves the reach of smooth motions.
     const int count = std::clamp(static_cast<int>(std::ceil(relativeReach / kSliceReach)), 1,
                                  kMaxTimeSlices);
+    frameContacts_.clear();
+    if (options_.autoContacts && options_.method == ImplicitMethod::Patches) {
+        frameContacts_ = FrameContacts(t0, t1, count);
+    }
     if (count == 1) {
         // The whole interval is the one slice: its field is the one just made.
         slices_.push_back({t1, std::move(whole), nullptr});
@@ -149,6 +161,28 @@ void ImplicitSurface::MakeTimeSlices(double t0, double t1) {
     whole_ = slices_.front().field;
 }
 
+// The undeclared pairs of `contact auto` over the shutter: the union of the pairs found in
+// the static objects at the start, middle and end of every time slice (2·slices + 1 times,
+// evenly spaced), each pair counted once for the frame. Static patches, not the moving
+// ones: their tight bounds prune the interpenetration search far better than swept ones.
+std::vector<ContactPair> ImplicitSurface::FrameContacts(double t0, double t1, int slices) const {
+    const uint64_t cpuStart = ThreadCpuMicroseconds();
+    std::vector<ContactPair> found;
+    for (int k = 0; k <= 2 * slices; ++k) {
+        const Field atTime(termsAt_(t0 + (t1 - t0) * k / (2 * slices)));
+        const std::vector<Patch> patches = BuildPatches(
+            atTime, options_.blendMode, options_.blendPairs, SeparatePairs(options_.contacts));
+        const std::vector<ContactPair> pairs = AutomaticContacts(patches, options_.threshold);
+        found.insert(found.end(), pairs.begin(), pairs.end());
+    }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    std::vector<ContactPair> pairs = UndeclaredContacts(found, options_.contacts);
+    for (size_t i = 0; i < pairs.size(); ++i) stats_.CountAutomaticContact();
+    stats_.CountPreprocessing(ThreadCpuMicroseconds() - cpuStart);
+    return pairs;
+}
+
 const ImplicitSurface::TimeSlice* ImplicitSurface::SliceAt(double time) const {
     if (slices_.empty()) return nullptr;
     for (const TimeSlice& slice : slices_) {
@@ -158,12 +192,6 @@ const ImplicitSurface::TimeSlice* ImplicitSurface::SliceAt(double time) const {
 }
 
 Field ImplicitSurface::MovingField(double t0, double t1, double* relativeReach) const {
-    const SourceLocation where = block_->Where(block_->skeletons.front().place);
-    if (!options_.contacts.empty() || options_.autoContacts) {
-        Report(Severity::Abort, where,
-               "implicit object: skeleton motion blur (shutter open) does not support "
-               "contacts; close the shutter or remove them");
-    }
     MovingTerms moving = BuildMovingTerms(block_, termsAt_(0.5 * (t0 + t1)), t0, t1);
     if (!moving.error.empty()) {
         Report(Severity::Abort, block_->Where(moving.place),

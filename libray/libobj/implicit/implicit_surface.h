@@ -49,8 +49,9 @@ class ImplicitSurface final : public Primitive {
     // each ray then seeing the skeletons at its own time. The shutter is cut into K equal
     // time slices, each with its own swept bounds and method, K the smallest in 1..8 with
     // every moving skeleton's reach over a slice at most kSliceReach of its influence
-    // radius (loose swept bounds cost the search more than K builds). Fails (Abort, at the skeleton)
-    // when the motion cannot be bounded or the object uses contacts. Method polynomial,
+    // radius (loose swept bounds cost the search more than K builds); `contact auto` finds
+    // one set of pairs for the whole shutter (FrameContacts). Fails (Abort, at the
+    // skeleton) when the motion cannot be bounded. Method polynomial,
     // whose terms cannot move, is replaced by kb89 (the same field) with the shutter open.
     void PrepareFrame(double frameTime, double shutter) override;
 
@@ -87,6 +88,10 @@ class ImplicitSurface final : public Primitive {
     Field MovingField(double t0, double t1, double* relativeReach = nullptr) const;
     // Cuts [t0, t1] into time slices (PrepareFrame).
     void MakeTimeSlices(double t0, double t1);
+    // `contact auto` with the shutter open: the pairs the declared ones do not name whose
+    // volumes interpenetrate at a start, middle or end of the `slices` time slices of
+    // [t0, t1]; counted in the statistics.
+    std::vector<ContactPair> FrameContacts(double t0, double t1, int slices) const;
 
     // One time slice of a moving object: its field over [start, end] of the shutter and
     // the method searching it; a ray uses the slice holding its time.
@@ -121,6 +126,9 @@ class ImplicitSurface final : public Primitive {
     // With the shutter open (and animated terms), the time slices, in time order; whole_
     // then shares the first one's terms (Terms(), names) and method_ is null.
     std::vector<TimeSlice> slices_;
+    // With the shutter open and `contact auto`, the frame's pairs (FrameContacts), given to
+    // every slice as declared pairs.
+    std::vector<ContactPair> frameContacts_;
 };
 
 }  // namespace rs

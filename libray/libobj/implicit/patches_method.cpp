@@ -48,9 +48,8 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
       settings_(options.search, options.octree),
       autoDepth_(options.autoDepth),
       stats_(stats) {
-    std::vector<std::pair<int, int>> separate;
-    for (const ContactPair& c : options.contacts) separate.emplace_back(c.a, c.b);
-    patches_ = BuildPatches(whole, options.blendMode, options.blendPairs, separate);
+    patches_ = BuildPatches(whole, options.blendMode, options.blendPairs,
+                            SeparatePairs(options.contacts));
     patchOfTerm_.assign(whole.Terms().size(), -1);
     for (size_t i = 0; i < patches_.size(); ++i) {
         patchOfTerm_[patches_[i].Own()] = static_cast<int>(i);
@@ -61,15 +60,10 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
     // not blend (declared ones never blend either, so none is found twice).
     std::vector<ContactPair> contacts = options.contacts;
     if (options.autoContacts) {
-        for (const ContactPair& c : AutomaticContacts(patches_, threshold_)) {
-            const bool declared =
-                std::any_of(contacts.begin(), contacts.end(), [&](const ContactPair& d) {
-                    return (d.a == c.a && d.b == c.b) || (d.a == c.b && d.b == c.a);
-                });
-            if (!declared) {
-                contacts.push_back(c);
-                stats_.CountAutomaticContact();
-            }
+        for (const ContactPair& c :
+             UndeclaredContacts(AutomaticContacts(patches_, threshold_), contacts)) {
+            contacts.push_back(c);
+            stats_.CountAutomaticContact();
         }
     }
     if (!contacts.empty()) {

@@ -501,5 +501,53 @@ TEST(AutomaticContacts, BlendingPairsAreLeftAlone) {
     EXPECT_TRUE(AutomaticContacts(BuildPatches(Field(terms), BlendMode::Automatic), 1.0).empty());
 }
 
+// The search clears cells by bounds (field <= T, or an own term that cannot predominate),
+// which must never clear a point inside both volumes: wherever a brute-force test of the
+// centres of the first five subdivision levels of the overlap box (every centre the search
+// would test there if it cleared nothing) finds a point inside both, the search must answer
+// yes. Random pairs of points and segments that do not blend but both blend with a hub
+// skeleton between them, so the hub's volume, where neither own term predominates, fills
+// much of the overlap.
+TEST(AutomaticContacts, PruningNeverClearsAPointInsideBoth) {
+    Rng rng(19);
+    int positives = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        std::vector<FieldTerm> terms;
+        for (const char* name : {"a", "b", "hub"}) {
+            FieldTerm t;
+            t.name = name;
+            t.skeleton = testing::RandomSkeleton(rng, rng.Uniform() < 0.5 ? 0 : 1);
+            t.kernel = RandomSmoothKernel(rng);
+            t.weight = Uniform(rng, 0.5, 1.5);
+            terms.push_back(t);
+        }
+        const std::vector<Patch> patches =
+            BuildPatches(Field(terms), BlendMode::Explicit, {{0, 2}, {1, 2}});
+        ASSERT_EQ(patches.size(), 3u);
+        const Patch& a = patches[0];
+        const Patch& b = patches[1];
+        const double threshold = 1;
+        const Bounds3 overlap = Intersection(a.Box(), b.Box());
+        if (overlap.IsEmpty()) continue;
+        bool found = false;
+        for (int level = 0; level <= 4 && !found; ++level) {
+            const int n = 1 << level;
+            const Vec3 step = overlap.Extent() / n;
+            for (int i = 0; i < n * n * n && !found; ++i) {
+                const Vec3 p = overlap.lo + Vec3{(i % n + 0.5) * step.x,
+                                                 ((i / n) % n + 0.5) * step.y,
+                                                 (i / (n * n) + 0.5) * step.z};
+                found = a.GetField().Value(p) > threshold && b.GetField().Value(p) > threshold &&
+                        a.Predominates(p) && b.Predominates(p);
+            }
+        }
+        positives += found;
+        if (found) {
+            EXPECT_TRUE(VolumesInterpenetrate(a, b, threshold)) << "trial " << trial;
+        }
+    }
+    EXPECT_GT(positives, 20);  // the property is exercised
+}
+
 }  // namespace
 }  // namespace rs
