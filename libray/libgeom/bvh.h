@@ -34,7 +34,9 @@ class BoundingVolumeHierarchy {
     // are not tested one by one). visit returns true when it found a hit, and may then have
     // shrunk tMax;
     // later boxes are clipped against the shrunken segment. Returns whether any visit hit.
-    // With kStopAtFirstHit the walk returns at the first visit that hits (occlusion).
+    // With kStopAtFirstHit the walk returns at the first visit that hits (occlusion), and
+    // the boxes met at a node are visited in lane order, not sorted by entry (any blocker
+    // answers the question).
     // Each item is visited at most once. The walk runs on the 4-wide nodes (see WideNode):
     // single-precision slab tests of four boxes at once, conservative (every item whose
     // double box meets the segment is visited; a few whose boxes pass within a relative
@@ -74,14 +76,15 @@ class BoundingVolumeHierarchy {
             }
             const WideNode& node = wide_[entry.ref];
             float tNear[4];
-            const int hitMask = node.Clip(fr, tMinF, tMaxF, tNear);
             // Push the lanes met, farthest first, so the nearest is popped next.
             const int first = top;
-            for (int k = 0; k < 4; ++k) {
-                if (!(hitMask & (1 << k))) continue;
+            for (int hitMask = node.Clip(fr, tMinF, tMaxF, tNear); hitMask != 0;
+                 hitMask &= hitMask - 1) {
+                const int k = __builtin_ctz(hitMask);
                 StackEntry e{node.child[k], node.count[k], tNear[k]};
                 int j = top++;
-                for (; j > first && stack[j - 1].tNear < e.tNear; --j) stack[j] = stack[j - 1];
+                if (!kStopAtFirstHit)
+                    for (; j > first && stack[j - 1].tNear < e.tNear; --j) stack[j] = stack[j - 1];
                 stack[j] = e;
             }
         }
@@ -263,12 +266,15 @@ inline int BoundingVolumeHierarchy::WideNode::Clip(const FloatRay& ray, float tM
     // An infinite entry (or exit at -inf) gives NaN here: an empty lane, or an
     // axis-parallel ray outside a slab, both misses.
     const auto met = lower <= upper;
+    for (int k = 0; k < 4; ++k) tNear[k] = lower[k];
+#ifdef __SSE__
+    // The lanes' sign bits in one instruction (a vector cast reinterprets the bits).
+    return __builtin_ia32_movmskps((Float4)met);
+#else
     int mask = 0;
-    for (int k = 0; k < 4; ++k) {
-        tNear[k] = lower[k];
-        mask |= (met[k] & 1) << k;
-    }
+    for (int k = 0; k < 4; ++k) mask |= (met[k] & 1) << k;
     return mask;
+#endif
 }
 
 }  // namespace rs

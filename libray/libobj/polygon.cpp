@@ -1,5 +1,6 @@
 #include "libobj/polygon.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -44,6 +45,59 @@ Polygon::Polygon(const std::vector<Vec3>& vertices, bool flip) {
         projected_.push_back(v[axisU_]);
         projected_.push_back(v[axisV_]);
     }
+    if (vertices.size() > kBandedEdges) BuildBands();
+}
+
+int Polygon::Band(double v) const {
+    // Non-decreasing in v: the subtraction and the multiplication by a positive constant
+    // are rounded monotonically, floor and the clamp keep the order.
+    const double f = std::floor((v - bandLo_) * bandScale_);
+    if (!(f > 0)) return 0;
+    return f >= bandCount_ - 1 ? bandCount_ - 1 : static_cast<int>(f);
+}
+
+void Polygon::BuildBands() {
+    const size_t count = projected_.size() / 2;
+    bandLo_ = bandHi_ = projected_[1];
+    for (size_t i = 0; i < count; ++i) {
+        bandLo_ = std::min(bandLo_, projected_[2 * i + 1]);
+        bandHi_ = std::max(bandHi_, projected_[2 * i + 1]);
+    }
+    // About four edges per band; a flat range (no edge can be crossed) keeps one band.
+    bandCount_ = bandHi_ > bandLo_ ? static_cast<int>(count / 4) : 1;
+    bandScale_ = bandHi_ > bandLo_ ? bandCount_ / (bandHi_ - bandLo_) : 0;
+    const auto edgeBands = [&](size_t e, int& first, int& last) {
+        const double v0 = projected_[2 * ((e + count - 1) % count) + 1], v1 = projected_[2 * e + 1];
+        first = Band(std::min(v0, v1));
+        last = Band(std::max(v0, v1));
+    };
+    // Two passes: count the entries of each band, then fill them in.
+    bandStart_.assign(bandCount_ + 1, 0);
+    for (size_t e = 0; e < count; ++e) {
+        int first, last;
+        edgeBands(e, first, last);
+        for (int b = first; b <= last; ++b) ++bandStart_[b + 1];
+    }
+    for (int b = 0; b < bandCount_; ++b) bandStart_[b + 1] += bandStart_[b];
+    bandEdges_.resize(bandStart_[bandCount_]);
+    std::vector<uint32_t> cursor(bandStart_.begin(), bandStart_.end() - 1);
+    for (size_t e = 0; e < count; ++e) {
+        int first, last;
+        edgeBands(e, first, last);
+        for (int b = first; b <= last; ++b) bandEdges_[cursor[b]++] = static_cast<uint32_t>(e);
+    }
+}
+
+inline int Polygon::Crossing(size_t e, double pu, double pv) const {
+    // Upward crossings of the horizontal line through the point that pass to its right
+    // count +1, downward ones passing to its left −1.
+    const size_t count = projected_.size() / 2;
+    const size_t j = e == 0 ? count - 1 : e - 1;
+    const double u0 = projected_[2 * j], v0 = projected_[2 * j + 1];
+    const double u1 = projected_[2 * e], v1 = projected_[2 * e + 1];
+    const double side = (u1 - u0) * (pv - v0) - (pu - u0) * (v1 - v0);
+    if (v0 <= pv) return v1 > pv && side > 0 ? 1 : 0;
+    return v1 <= pv && side < 0 ? -1 : 0;
 }
 
 std::shared_ptr<Primitive> Polygon::Create(ArgReader& args) {
@@ -69,20 +123,16 @@ bool Polygon::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& 
     if (!(t > tMin && t < tMax)) return false;
     const Vec3 x = ray.At(t);
     const double pu = x[axisU_], pv = x[axisV_];
-    // Winding number of the projected outline around (pu, pv): count upward crossings of
-    // the horizontal line through the point that pass to its right (+1) and downward ones
-    // passing to its left (−1); non-zero means inside.
+    // Winding number of the projected outline around (pu, pv); non-zero means inside. With
+    // bands, only the edges of the point's band can cross (none outside the v range).
     int winding = 0;
-    const size_t count = projected_.size() / 2;
-    for (size_t i = 0, j = count - 1; i < count; j = i++) {
-        const double u0 = projected_[2 * j], v0 = projected_[2 * j + 1];
-        const double u1 = projected_[2 * i], v1 = projected_[2 * i + 1];
-        const double side = (u1 - u0) * (pv - v0) - (pu - u0) * (v1 - v0);
-        if (v0 <= pv) {
-            if (v1 > pv && side > 0) ++winding;
-        } else if (v1 <= pv && side < 0) {
-            --winding;
-        }
+    if (bandCount_ == 0) {
+        const size_t count = projected_.size() / 2;
+        for (size_t e = 0; e < count; ++e) winding += Crossing(e, pu, pv);
+    } else {
+        if (!(pv >= bandLo_ && pv < bandHi_)) return false;
+        const int b = Band(pv);
+        for (uint32_t k = bandStart_[b]; k < bandStart_[b + 1]; ++k) winding += Crossing(bandEdges_[k], pu, pv);
     }
     if (winding == 0) return false;
     hit.t = t;

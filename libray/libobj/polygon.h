@@ -3,6 +3,7 @@
 // Normal by Newell's method, negated by `-f`. uv = (X_x, X_y) with ∂P/∂u = x̂, ∂P/∂v = ŷ.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -38,6 +39,22 @@ class Polygon final : public Primitive {
     int axisU_, axisV_;
     std::vector<double> projected_;
     Bounds3 bounds_;
+
+    // Outlines of more than kBandedEdges edges (gear faces: 144) are cut into horizontal
+    // bands of the projected v range, each listing the edges whose v range overlaps it, so
+    // a point's winding number adds only the edges of its band. An edge can cross the
+    // line v = pv only if min(v0, v1) <= pv < max(v0, v1); Band() is non-decreasing in v,
+    // so such an edge is listed in Band(pv). The band lists are empty for small outlines.
+    static constexpr size_t kBandedEdges = 12;
+    // Edge e runs from vertex e - 1 (cyclically) to vertex e; +1, -1 or 0 to the winding
+    // number of the projected outline around (pu, pv).
+    int Crossing(size_t e, double pu, double pv) const;
+    int Band(double v) const;
+    void BuildBands();
+    double bandLo_ = 0, bandHi_ = 0, bandScale_ = 0;  // v range; bands per unit of v
+    int bandCount_ = 0;
+    // Band b lists bandEdges_[k] for bandStart_[b] <= k < bandStart_[b + 1].
+    std::vector<uint32_t> bandStart_, bandEdges_;
 };
 
 }  // namespace rs

@@ -51,6 +51,59 @@ TEST(Polygon, PentagramCentreIsInsideByNonZeroWinding) {
     EXPECT_LT(HitT(p, Down(0.5, 0.8)), 0);
 }
 
+TEST(Polygon, ManyVerticesMatchTheFanTest) {
+    // A gear-like outline, star-shaped from the origin (radius 1 ± 0.3 over 24 teeth,
+    // 144 vertices: the banded winding test). A point is inside exactly when it lies on the
+    // inner side of the edge of its angular sector; points at the vertices' own heights
+    // (band boundaries) are included. The winding test must agree everywhere.
+    constexpr int kVertices = 144;
+    std::vector<Vec3> gear;
+    for (int k = 0; k < kVertices; ++k) {
+        const double a = 2 * kPi * k / kVertices;
+        const double r = 1 + 0.3 * ((k / 3) % 2 == 0 ? 1 : -1);
+        gear.push_back({r * std::cos(a), r * std::sin(a), 0});
+    }
+    const Polygon p(gear, false);
+    const auto insideByFan = [&](double x, double y) {
+        double a = std::atan2(y, x);
+        if (a < 0) a += 2 * kPi;
+        const int k = static_cast<int>(a / (2 * kPi) * kVertices) % kVertices;
+        const Vec3& v0 = gear[k];
+        const Vec3& v1 = gear[(k + 1) % kVertices];
+        // Counter-clockwise outline: inside is to the left of v0 → v1.
+        return (v1.x - v0.x) * (y - v0.y) - (v1.y - v0.y) * (x - v0.x) > 0;
+    };
+    uint64_t state = 12345;
+    const auto uniform = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(state >> 11) * 0x1p-53 * 3 - 1.5;
+    };
+    int inside = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const double x = uniform();
+        const double y = i % 4 == 0 ? gear[i % kVertices].y : uniform();
+        const bool expected = insideByFan(x, y);
+        inside += expected;
+        EXPECT_EQ(HitT(p, Down(x, y)) > 0, expected) << x << " " << y;
+    }
+    EXPECT_GT(inside, 500);  // both answers occur
+    EXPECT_LT(inside, 3500);
+}
+
+TEST(Polygon, ManyVerticesKeepTheNonZeroRule) {
+    // The star polygon {29/5}: the centre is wound 5 times, a point outside the circle 0.
+    std::vector<Vec3> star;
+    for (int k = 0; k < 29; ++k) {
+        const double a = k * 5 * 2 * kPi / 29;
+        star.push_back({std::cos(a), std::sin(a), 0});
+    }
+    const Polygon p(star, false);
+    EXPECT_GT(HitT(p, Down(0, 0)), 0);
+    EXPECT_GT(HitT(p, Down(0.1, -0.2)), 0);
+    EXPECT_LT(HitT(p, Down(1.2, 0)), 0);
+    EXPECT_LT(HitT(p, Down(0, -1.01)), 0);
+}
+
 TEST(Polygon, VerticalPlane) {
     // In the xz-plane: the dominant normal axis is y.
     const Polygon p({{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, false);
