@@ -1,6 +1,7 @@
 #include "libshade/lexer.h"
 
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <cstdlib>
 #include <string_view>
@@ -25,9 +26,10 @@ constexpr Synonym kSynonyms[] = {{"polygon", "poly"},       {"reflective", "refl
 // Implicit Patches primitive (libray/libobj/implicit/README.md), and `patches`, its debug
 // texture (libray/libtext/patches_texture.h). Synonyms map to the spelling
 // the grammar uses; `samples` (the quick reference's spelling) is accepted for `sample`.
-const std::unordered_map<std::string, std::string>& KeywordTable() {
-    static const std::unordered_map<std::string, std::string> table = [] {
-        std::unordered_map<std::string, std::string> t;
+// Keys and values view string literals, so a lookup builds no string.
+const std::unordered_map<std::string_view, std::string_view>& KeywordTable() {
+    static const std::unordered_map<std::string_view, std::string_view> table = [] {
+        std::unordered_map<std::string_view, std::string_view> t;
         const char* words[] = {
             "ambient",     "aperture",    "applysurf",    "area",      "atmosphere", "background",
             "blob",        "blotch",      "body",         "box",       "bump",       "checker",
@@ -49,10 +51,17 @@ const std::unordered_map<std::string, std::string>& KeywordTable() {
             "union",       "up",          "uv",           "verbose",   "window",     "windy",
             "wood"};
         for (const char* w : words) t.emplace(w, w);
-        for (const Synonym& s : kSynonyms) t.emplace(std::string(s.word), std::string(s.keyword));
+        for (const Synonym& s : kSynonyms) t.emplace(s.word, s.keyword);
         return t;
     }();
     return table;
+}
+
+// The canonical spelling of keyword `word`, or an empty view.
+std::string_view FindKeyword(std::string_view word) {
+    static const auto& table = KeywordTable();
+    auto it = table.find(word);
+    return it == table.end() ? std::string_view() : it->second;
 }
 
 bool IsLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
@@ -71,10 +80,7 @@ std::string Abbreviate(const std::string& s) {
 
 }  // namespace
 
-std::string CanonicalKeyword(const std::string& word) {
-    auto it = KeywordTable().find(word);
-    return it == KeywordTable().end() ? std::string() : it->second;
-}
+std::string CanonicalKeyword(const std::string& word) { return std::string(FindKeyword(word)); }
 
 bool SpellsKeyword(std::string_view word, std::string_view keyword) {
     if (word == keyword) return true;
@@ -234,50 +240,113 @@ size_t Lexer::MatchNumber(size_t start) const {
 }
 
 Token Lexer::Next() {
-    SkipSpaceAndComments();
     Token tok;
+    Next(tok);
+    return tok;
+}
+
+void Lexer::Next(Token& tok) {
+    SkipSpaceAndComments();
+    tok.kind = TokenKind::End;
+    tok.text.clear();
+    tok.keyword.clear();
+    tok.number = 0;
     tok.file = file_;
     tok.line = line_;
-    if (pos_ >= text_.size()) return tok;
+    if (pos_ >= text_.size()) return;
     atLineStart_ = false;
 
     char c = text_[pos_];
-    if (size_t n = MatchNumber(pos_); n > 0 && (IsDigit(c) || c == '.')) {
-        tok.kind = TokenKind::Number;
-        tok.text = text_.substr(pos_, n);
-        pos_ += n;
-        // from_chars and strtod both round correctly; strtod settles what from_chars leaves
-        // (out of range: infinity, zero or a subnormal, as before).
-        const char* end = tok.text.data() + tok.text.size();
-        if (auto [stop, error] = std::from_chars(tok.text.data(), end, tok.number);
-            error != std::errc() || stop != end) {
-            tok.number = std::strtod(tok.text.c_str(), nullptr);
+    if (IsDigit(c) || c == '.') {
+        if (size_t n = MatchNumber(pos_); n > 0) {
+            ReadNumber(n, tok);
+            return;
         }
-        if (!std::isfinite(tok.number)) Fail("Number out of range: %s", tok.text);
-        return tok;
     }
     if (IsLetter(c) || c == '/' || c == '.') {
         if (size_t n = MatchFilename(pos_); n > 0) {
-            tok.text = text_.substr(pos_, n);
+            tok.text.assign(text_, pos_, n);
             pos_ += n;
             if (n > kMaxNameLength)
                 Fail(StringPrintf("Name longer than %zu characters: %%s", kMaxNameLength).c_str(),
                      tok.text);
             if (tok.text.find('/') != std::string::npos) {
                 tok.kind = TokenKind::Filename;
-            } else if (std::string k = CanonicalKeyword(tok.text); !k.empty()) {
+            } else if (std::string_view k = FindKeyword(tok.text); !k.empty()) {
                 tok.kind = TokenKind::Keyword;
-                tok.keyword = std::move(k);
+                tok.keyword.assign(k);
             } else {
                 tok.kind = TokenKind::Name;
             }
-            return tok;
+            return;
         }
     }
     tok.kind = TokenKind::Char;
-    tok.text = std::string(1, c);
+    tok.text.assign(1, c);
     ++pos_;
-    return tok;
+}
+
+namespace {
+
+// Clinger's fast path: when the digits of a decimal (its syntax checked by MatchNumber) make
+// an integer m <= 2^53 with a power of ten 10^e, |e| <= 22, both are exact doubles and one
+// multiplication or division rounds m·10^e correctly, as from_chars does. Returns false
+// when the number is outside that case.
+bool ReadDecimalFast(const char* p, const char* end, double& value) {
+    constexpr uint64_t kMaxExact = uint64_t{1} << 53;
+    static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                              1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                              1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    uint64_t m = 0;
+    int exponent = 0;
+    bool fraction = false;
+    for (; p < end; ++p) {
+        const char c = *p;
+        if (c == '.') {
+            fraction = true;
+            continue;
+        }
+        if (!IsDigit(c)) break;
+        if (fraction) --exponent;
+        if (m > kMaxExact) return false;  // m·10 + d cannot overflow before this
+        m = m * 10 + static_cast<uint64_t>(c - '0');
+    }
+    if (p < end) {  // the exponent: [eE][+-]?D+
+        ++p;
+        const bool negative = *p == '-';
+        if (*p == '+' || *p == '-') ++p;
+        int e = 0;
+        for (; p < end; ++p) {
+            if (e > 1000) return false;
+            e = e * 10 + (*p - '0');
+        }
+        exponent += negative ? -e : e;
+    }
+    if (m > kMaxExact) return false;
+    if (m == 0) {
+        value = 0;
+        return true;
+    }
+    if (exponent < -22 || exponent > 22) return false;
+    const double mantissa = static_cast<double>(m);
+    value = exponent < 0 ? mantissa / kPowersOfTen[-exponent] : mantissa * kPowersOfTen[exponent];
+    return true;
+}
+
+}  // namespace
+
+void Lexer::ReadNumber(size_t n, Token& tok) {
+    tok.kind = TokenKind::Number;
+    tok.text.assign(text_, pos_, n);
+    const char* begin = text_.data() + pos_;
+    const char* end = begin + n;
+    pos_ += n;
+    if (ReadDecimalFast(begin, end, tok.number)) return;
+    // from_chars and strtod both round correctly; strtod settles what from_chars leaves
+    // (out of range: infinity, zero or a subnormal, as before).
+    if (auto [stop, error] = std::from_chars(begin, end, tok.number); error != std::errc() || stop != end)
+        tok.number = std::strtod(tok.text.c_str(), nullptr);
+    if (!std::isfinite(tok.number)) Fail("Number out of range: %s", tok.text);
 }
 
 void TokenStream::Push() {
@@ -287,7 +356,7 @@ void TokenStream::Push() {
         ring_ = std::move(grown);
         head_ = 0;
     }
-    ring_[(head_ + count_) & (ring_.size() - 1)] = lexer_.Next();
+    lexer_.Next(ring_[(head_ + count_) & (ring_.size() - 1)]);
     ++count_;
 }
 

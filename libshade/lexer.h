@@ -66,12 +66,17 @@ class Lexer {
     Lexer(std::string text, std::string fileName);
 
     Token Next();
+    // The same into `tok`, reusing its strings' storage (the token stream's ring lexes into
+    // its slots this way, so large scenes allocate nothing per token).
+    void Next(Token& tok);
 
   private:
     void SkipSpaceAndComments();
     void ReadLineMarker();
     size_t MatchFilename(size_t start) const;  // length of the longest name/filename at start
     size_t MatchNumber(size_t start) const;    // length of the number at start, 0 if none
+    // Lexes the number of length n at pos_ into tok (kind, text, value) and moves past it.
+    void ReadNumber(size_t n, Token& tok);
     [[noreturn]] void Fail(const char* format, const std::string& arg) const;
 
     std::string text_;

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <random>
+#include <string>
 #include <vector>
 
 namespace rs {
@@ -61,6 +65,32 @@ TEST(Lexer, Numbers) {
     EXPECT_EQ(t[5].kind, TokenKind::Number);
     EXPECT_DOUBLE_EQ(t[5].number, 7);
     EXPECT_EQ(t[6].kind, TokenKind::Name);
+}
+
+// Every number is the double strtod reads from its spelling (correctly rounded), on the
+// lexer's fast path (few digits, small exponents) and off it (many digits, large exponents,
+// subnormals).
+TEST(Lexer, NumbersRoundAsStrtodDoes) {
+    std::mt19937 random(15);
+    std::uniform_int_distribution<int> digit(0, 9), count(0, 20), exponent(-330, 330);
+    for (int i = 0; i < 20000; ++i) {
+        std::string spelling;
+        for (int d = count(random); d >= 0; --d) spelling += static_cast<char>('0' + digit(random));
+        if (i % 2 == 0) {
+            spelling += '.';
+            for (int d = count(random); d > 0; --d) spelling += static_cast<char>('0' + digit(random));
+        }
+        if (i % 3 == 0) {
+            const int e = i % 6 == 0 ? exponent(random) : exponent(random) / 15;
+            spelling += 'e';
+            spelling += std::to_string(e);
+        }
+        const double expected = std::strtod(spelling.c_str(), nullptr);
+        if (!std::isfinite(expected)) continue;  // out of range: an error, tested above
+        auto t = LexAll(spelling);
+        ASSERT_EQ(t.size(), 1u) << spelling;
+        EXPECT_EQ(t[0].number, expected) << spelling;
+    }
 }
 
 TEST(Lexer, SignsAreSeparateTokens) {
