@@ -121,26 +121,52 @@ PpTokens Tokenize(std::string_view s) {
     return out;
 }
 
+// How MentionsMacro treats a character: skipped, the start of a pp-number (a '.' only
+// when a digit follows), of an identifier, or a quote (which goes to cpp).
+enum class ScanClass : unsigned char { Skip, Digit, Dot, Identifier, Quote };
+constexpr std::array<ScanClass, 256> kScanClasses = [] {
+    std::array<ScanClass, 256> table{};
+    for (int c = 0; c < 256; ++c) {
+        const char ch = static_cast<char>(c);
+        table[c] = IsDigit(ch)                 ? ScanClass::Digit
+                   : ch == '.'                 ? ScanClass::Dot
+                   : IsIdentifierStart(ch)     ? ScanClass::Identifier
+                   : ch == '"' || ch == '\'' ? ScanClass::Quote
+                                               : ScanClass::Skip;
+    }
+    return table;
+}();
+ScanClass ScanClassOf(char c) { return kScanClasses[static_cast<unsigned char>(c)]; }
+
 // Whether a line names one of `macros` (so it must be tokenized and expanded). Applies
 // Tokenize's checks, without building tokens: most lines of large scenes mention none.
 template <class Macros>
 bool MentionsMacro(std::string_view line, const Macros& macros) {
-    for (size_t i = 0; i < line.size();) {
-        const char c = line[i];
-        if (c == '"' || c == '\'') throw NeedsCpp{};
-        if (StartsPpNumber(line, i)) {
-            i = PpNumberEnd(line, i);  // its letters are not an identifier (as in Tokenize)
-            continue;
-        }
-        if (!IsIdentifierStart(c)) {
-            ++i;
-            continue;
+    const size_t n = line.size();
+    for (size_t i = 0; i < n;) {
+        switch (ScanClassOf(line[i])) {
+            case ScanClass::Skip:
+                ++i;
+                continue;
+            case ScanClass::Quote:
+                throw NeedsCpp{};
+            case ScanClass::Dot:
+                if (!StartsPpNumber(line, i)) {
+                    ++i;
+                    continue;
+                }
+                [[fallthrough]];
+            case ScanClass::Digit:
+                i = PpNumberEnd(line, i);  // its letters are not an identifier (as in Tokenize)
+                continue;
+            case ScanClass::Identifier:
+                break;
         }
         size_t j = i + 1;
-        while (j < line.size() && IsIdentifierChar(line[j])) ++j;
+        while (j < n && IsIdentifierChar(line[j])) ++j;
         const std::string_view word = line.substr(i, j - i);
         if (IsPredefinedByCpp(word)) throw NeedsCpp{};
-        if (macros.find(word) != macros.end()) return true;
+        if (!macros.empty() && macros.find(word) != macros.end()) return true;
         i = j;
     }
     return false;
@@ -148,11 +174,17 @@ bool MentionsMacro(std::string_view line, const Macros& macros) {
 
 // Whether StripComments copies `c` without looking at it: not the start of a comment or
 // quote, nor anything it rejects.
-bool IsPlain(char c) {
-    const unsigned char u = static_cast<unsigned char>(c);
+constexpr bool IsPlainCharacter(unsigned char u) {
+    const char c = static_cast<char>(u);
     return (u >= 0x20 || c == '\t' || c == '\n' || c == '\r') && u != 0x7f && c != '/' &&
            c != '"' && c != '\\' && c != '\'';
 }
+constexpr std::array<bool, 256> kPlainCharacters = [] {
+    std::array<bool, 256> table{};
+    for (int c = 0; c < 256; ++c) table[c] = IsPlainCharacter(static_cast<unsigned char>(c));
+    return table;
+}();
+bool IsPlain(char c) { return kPlainCharacters[static_cast<unsigned char>(c)]; }
 
 // Replaces each comment by a blank followed by the newlines it contained, so every line
 // keeps its number. Throws NeedsCpp on what cpp would treat specially outside comments:

@@ -36,19 +36,21 @@ bool IsSurfaceAttribute(const Token& t) {
                        [&](std::string_view a) { return t.keyword == a; });
 }
 
-bool IsAggregateKeyword(const std::string& k) {
+// Keywords are compared as views: a literal's length is then known at compile time and most
+// words are rejected by their length (these run for every object of large scenes).
+bool IsAggregateKeyword(std::string_view k) {
     return k == "list" || k == "grid" || k == "union" || k == "intersect" || k == "difference";
 }
 
 // Keywords that are legal only outside aggregates (spec §2, parsing notes).
-bool IsTopLevelOnly(const std::string& k) {
-    static const char* const kWords[] = {
+bool IsTopLevelOnly(std::string_view k) {
+    static constexpr std::string_view kWords[] = {
         "eyep",       "lookp",  "up",        "fov",         "aperture",     "focaldist",
         "eyesep",     "screen", "window",    "crop",        "sample",       "filter",
         "contrast",   "cutoff", "maxdepth",  "background",  "shadowtransp", "outfile",
         "report",     "frames", "starttime", "framelength", "shutter",      "light",
         "atmosphere", "define", "print"};
-    return std::any_of(std::begin(kWords), std::end(kWords), [&](const char* w) { return k == w; });
+    return std::any_of(std::begin(kWords), std::end(kWords), [&](std::string_view w) { return k == w; });
 }
 
 enum class TransformKind { Translate, Scale, Rotate, General };
@@ -96,7 +98,7 @@ class Parser final : public ParserServices {
   private:
     // A reader for the arguments of keyword token `kw`.
     TokenArgReader Args(const Token& kw, const char* usage) {
-        return TokenArgReader(*this, kw.Location(), usage);
+        return TokenArgReader(*this, kw, usage);
     }
 
     void ParseTopLevelItem();
@@ -172,7 +174,7 @@ void Parser::ParseTopLevelItem() {
 bool Parser::ParseScopedItem(std::vector<std::shared_ptr<Object>>& into) {
     const Token& t = tokens_.Peek();
     if (t.kind != TokenKind::Keyword) return false;
-    const std::string& k = t.keyword;
+    const std::string_view k = t.keyword;
     if (k == "surface") {
         ParseSurfaceDefinition();
     } else if (k == "applysurf") {
@@ -486,8 +488,8 @@ bool Parser::PeekSurfaceStart() {
 }
 
 std::shared_ptr<const Surface> Parser::ParseSurface(std::string_view usage) {
-    Token first = tokens_.Peek();
-    TokenArgReader args(*this, first.Location(), usage);
+    const Token& first = tokens_.Peek();  // valid until the token is consumed
+    TokenArgReader args(*this, first, usage);
     Surface base;
     if (first.IsKeyword("cursurf")) {
         tokens_.Next();
@@ -496,10 +498,10 @@ std::shared_ptr<const Surface> Parser::ParseSurface(std::string_view usage) {
             return current ? current : std::make_shared<const Surface>(Surface::Default());
         base = current ? *current : Surface::Default();
     } else if (first.kind == TokenKind::Name) {
-        tokens_.Next();
         auto it = surfaces_.find(first.text);
         if (it == surfaces_.end())
             FailAt(first.Location(), "", "Undefined surface '" + first.text + "'");
+        tokens_.Skip();
         if (!IsSurfaceAttribute(tokens_.Peek())) return it->second;
         base = *it->second;
     } else if (IsSurfaceAttribute(first)) {
@@ -597,7 +599,7 @@ std::shared_ptr<Object> Parser::ParsePrimitive() {
         row->startsArguments(tokens_.Peek().text))
         surfaceFollows = false;
     if (surfaceFollows) surface = ParseSurface(row->usage);
-    TokenArgReader args(*this, kw.Location(), row->usage);
+    TokenArgReader args(*this, kw, row->usage);
     std::shared_ptr<Primitive> prim = row->create(args);
     if (!prim) return nullptr;  // degenerate: the factory has warned
     std::shared_ptr<Object> node = Object::MakePrimitive(std::move(prim));
@@ -773,7 +775,7 @@ std::shared_ptr<Texture> Parser::ParseTexture() {
     }
     if (!row) FailAt(type.Location(), "", "Unknown texture type " + type.Describe());
     Token typeTok = tokens_.Next();
-    TokenArgReader args(*this, typeTok.Location(), row->usage);
+    TokenArgReader args(*this, typeTok, row->usage);
     std::shared_ptr<Texture> texture = row->create(args);
     TransformList transforms;
     ParseTransforms(transforms);

@@ -1,5 +1,8 @@
 #include "libshade/primitive_registry.h"
 
+#include <string_view>
+#include <unordered_map>
+
 #include "libobj/blob.h"
 #include "libobj/box.h"
 #include "libobj/cone.h"
@@ -38,22 +41,18 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry() {
     return rows;
 }
 
-const PrimitiveEntry* FindPrimitive(const std::string& keyword) {
-    // Called for every object of a scene: the keywords' lengths are compared before their
-    // characters, and the table is looked up once.
-    static const std::vector<PrimitiveEntry>& rows = PrimitiveRegistry();
-    static const std::vector<std::string_view> keywords = [] {
-        std::vector<std::string_view> k;
-        for (const PrimitiveEntry& row : rows) k.emplace_back(row.keyword);
-        return k;
+const PrimitiveEntry* FindPrimitive(std::string_view keyword) {
+    // Called for every object of a scene: one hash lookup in a table built once.
+    static const std::unordered_map<std::string_view, const PrimitiveEntry*> rows = [] {
+        std::unordered_map<std::string_view, const PrimitiveEntry*> byKeyword;
+        for (const PrimitiveEntry& row : PrimitiveRegistry()) byKeyword.emplace(row.keyword, &row);
+        return byKeyword;
     }();
-    const std::string_view word = keyword;
-    for (size_t i = 0; i < keywords.size(); ++i)
-        if (word == keywords[i]) return &rows[i];
-    return nullptr;
+    const auto it = rows.find(keyword);
+    return it == rows.end() ? nullptr : it->second;
 }
 
-bool IsPrimitiveKeyword(const std::string& keyword) {
+bool IsPrimitiveKeyword(std::string_view keyword) {
     return FindPrimitive(keyword) != nullptr;
 }
 
