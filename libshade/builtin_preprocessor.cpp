@@ -186,6 +186,52 @@ constexpr std::array<bool, 256> kPlainCharacters = [] {
 }();
 bool IsPlain(char c) { return kPlainCharacters[static_cast<unsigned char>(c)]; }
 
+// What IsPlainText makes of a character: nothing to do, a letter or '_' (which may start an
+// identifier), or anything that needs the full preprocessor: '#', '/' (a comment may
+// start), quotes, backslashes, control characters other than tab, newline and return, DEL.
+enum class PlainClass : unsigned char { Plain, IdentifierStart, Special };
+constexpr std::array<PlainClass, 256> kPlainClasses = [] {
+    std::array<PlainClass, 256> table{};
+    for (int c = 0; c < 256; ++c) {
+        const char ch = static_cast<char>(c);
+        const bool control = c < 0x20 && ch != '\t' && ch != '\n' && ch != '\r';
+        table[c] = IsIdentifierStart(ch) ? PlainClass::IdentifierStart
+                   : control || c == 0x7f || ch == '#' || ch == '/' || ch == '"' || ch == '\'' || ch == '\\'
+                       ? PlainClass::Special
+                       : PlainClass::Plain;
+    }
+    return table;
+}();
+
+// Whether `text` is plain: no directive, comment, quote, backslash or control character,
+// and no word a cpp predefines. With no macros defined, the preprocessor's output for plain
+// text is the text itself (with a final newline): every line is copied as it is. One pass
+// (large scenes are mostly plain). Words here are runs of identifier characters starting
+// with a letter or '_' not preceded by an identifier character, which include every
+// identifier of Tokenize's and some letters of pp-numbers (`1.e5`): seeing more words
+// only sends more texts to the full preprocessor, which decides exactly.
+bool IsPlainText(std::string_view text) {
+    const char* p = text.data();
+    const size_t n = text.size();
+    for (size_t i = 0; i < n;) {
+        switch (kPlainClasses[static_cast<unsigned char>(p[i])]) {
+            case PlainClass::Plain:
+                ++i;
+                continue;
+            case PlainClass::Special:
+                return false;
+            case PlainClass::IdentifierStart:
+                break;
+        }
+        const bool wordStart = i == 0 || !IsIdentifierChar(p[i - 1]);
+        size_t j = i + 1;
+        while (j < n && IsIdentifierChar(p[j])) ++j;
+        if (wordStart && IsPredefinedByCpp(text.substr(i, j - i))) return false;
+        i = j;
+    }
+    return true;
+}
+
 // Replaces each comment by a blank followed by the newlines it contained, so every line
 // keeps its number. Throws NeedsCpp on what cpp would treat specially outside comments:
 // `//`, backslashes, apostrophes, control characters, and a '#' right after a comment that
@@ -597,6 +643,10 @@ std::string Preprocessor::Run(std::string text, const std::string& fileName, int
 
 std::optional<std::string> PreprocessBuiltin(std::string text, const std::string& fileName,
                                              const std::vector<CommandLineMacro>& predefined) {
+    if (predefined.empty() && IsPlainText(text)) {
+        if (!text.empty() && text.back() != '\n') text += '\n';
+        return text;
+    }
     try {
         Preprocessor preprocessor(predefined);
         return preprocessor.Run(std::move(text), fileName, 0);

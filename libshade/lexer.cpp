@@ -125,6 +125,12 @@ void Lexer::Fail(const char* format, const std::string& arg) const {
 
 void Lexer::SkipSpaceAndComments() {
     while (pos_ < text_.size()) {
+        // Runs of blanks first, in locals (most of a large scene's characters between tokens).
+        const char* text = text_.data();
+        size_t p = pos_;
+        while (IsBlank(text[p])) ++p;  // the NUL after the text ends the run
+        pos_ = p;
+        if (pos_ >= text_.size()) return;
         char c = text_[pos_];
         if (c == '\n') {
             ++line_;
@@ -215,30 +221,6 @@ size_t Lexer::MatchFilename(size_t start) const {
     return best;
 }
 
-// D+ | D+ . D* [E] | D* . D+ [E] | D+ E with E = [eE][+-]?D+.
-size_t Lexer::MatchNumber(size_t start) const {
-    size_t p = start;
-    size_t intDigits = 0, fracDigits = 0;
-    while (IsDigit(At(text_, p))) ++p, ++intDigits;
-    if (At(text_, p) == '.') {
-        size_t q = p + 1;
-        while (IsDigit(At(text_, q))) ++q, ++fracDigits;
-        if (intDigits == 0 && fracDigits == 0) return 0;
-        p = q;
-    }
-    if (intDigits == 0 && fracDigits == 0) return 0;
-    char e = At(text_, p);
-    if (e == 'e' || e == 'E') {
-        size_t q = p + 1;
-        if (At(text_, q) == '+' || At(text_, q) == '-') ++q;
-        if (IsDigit(At(text_, q))) {
-            while (IsDigit(At(text_, q))) ++q;
-            p = q;
-        }
-    }
-    return p - start;
-}
-
 Token Lexer::Next() {
     Token tok;
     Next(tok);
@@ -257,12 +239,7 @@ void Lexer::Next(Token& tok) {
     atLineStart_ = false;
 
     char c = text_[pos_];
-    if (IsDigit(c) || c == '.') {
-        if (size_t n = MatchNumber(pos_); n > 0) {
-            ReadNumber(n, tok);
-            return;
-        }
-    }
+    if ((IsDigit(c) || c == '.') && ReadNumber(tok)) return;
     if (IsLetter(c) || c == '/' || c == '.') {
         if (size_t n = MatchFilename(pos_); n > 0) {
             tok.text.assign(text_, pos_, n);
@@ -288,65 +265,70 @@ void Lexer::Next(Token& tok) {
 
 namespace {
 
-// Clinger's fast path: when the digits of a decimal (its syntax checked by MatchNumber) make
-// an integer m <= 2^53 with a power of ten 10^e, |e| <= 22, both are exact doubles and one
-// multiplication or division rounds m·10^e correctly, as from_chars does. Returns false
-// when the number is outside that case.
-bool ReadDecimalFast(const char* p, const char* end, double& value) {
+// The number at `s` (D+ | D+ . D* [E] | D* . D+ [E] | D+ E with E = [eE][+-]?D+): returns
+// its length, 0 when none starts there. `s` must be NUL-terminated (the NUL ends any number).
+// Reads its value on the way by Clinger's fast path: when the digits make an integer
+// m <= 2^53 and the power of ten 10^e has |e| <= 22, both are exact doubles and one
+// multiplication or division rounds m·10^e correctly, as from_chars does; `exact` says
+// whether `value` was set so.
+size_t ScanNumber(const char* s, double& value, bool& exact) {
     constexpr uint64_t kMaxExact = uint64_t{1} << 53;
     static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                               1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                               1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-    uint64_t m = 0;
-    int exponent = 0;
-    bool fraction = false;
-    for (; p < end; ++p) {
-        const char c = *p;
-        if (c == '.') {
-            fraction = true;
-            continue;
+    const char* p = s;
+    uint64_t m = 0;  // the digits (wrapping when more than 19, then unused)
+    for (; IsDigit(*p); ++p) m = m * 10 + static_cast<uint64_t>(*p - '0');
+    const long intDigits = p - s;
+    long fracDigits = 0;
+    if (*p == '.') {
+        const char* q = p + 1;
+        for (; IsDigit(*q); ++q) m = m * 10 + static_cast<uint64_t>(*q - '0');
+        fracDigits = q - p - 1;
+        p = q;
+    }
+    if (intDigits == 0 && fracDigits == 0) return 0;
+    long exponent = -fracDigits;
+    if (*p == 'e' || *p == 'E') {
+        const char* q = p + 1;
+        const bool negative = *q == '-';
+        if (*q == '+' || *q == '-') ++q;
+        if (IsDigit(*q)) {
+            long e = 0;
+            for (; IsDigit(*q); ++q)
+                if (e < 100000) e = e * 10 + (*q - '0');
+            exponent += negative ? -e : e;
+            p = q;
         }
-        if (!IsDigit(c)) break;
-        if (fraction) --exponent;
-        if (m > kMaxExact) return false;  // m·10 + d cannot overflow before this
-        m = m * 10 + static_cast<uint64_t>(c - '0');
     }
-    if (p < end) {  // the exponent: [eE][+-]?D+
-        ++p;
-        const bool negative = *p == '-';
-        if (*p == '+' || *p == '-') ++p;
-        int e = 0;
-        for (; p < end; ++p) {
-            if (e > 1000) return false;
-            e = e * 10 + (*p - '0');
-        }
-        exponent += negative ? -e : e;
+    exact = intDigits + fracDigits <= 19 && m <= kMaxExact && (m == 0 || (exponent >= -22 && exponent <= 22));
+    if (exact) {
+        const double mantissa = static_cast<double>(m);
+        value = m == 0         ? 0
+                : exponent < 0 ? mantissa / kPowersOfTen[-exponent]
+                               : mantissa * kPowersOfTen[exponent];
     }
-    if (m > kMaxExact) return false;
-    if (m == 0) {
-        value = 0;
-        return true;
-    }
-    if (exponent < -22 || exponent > 22) return false;
-    const double mantissa = static_cast<double>(m);
-    value = exponent < 0 ? mantissa / kPowersOfTen[-exponent] : mantissa * kPowersOfTen[exponent];
-    return true;
+    return static_cast<size_t>(p - s);
 }
 
 }  // namespace
 
-void Lexer::ReadNumber(size_t n, Token& tok) {
-    tok.kind = TokenKind::Number;
-    tok.text.assign(text_, pos_, n);
-    const char* begin = text_.data() + pos_;
+bool Lexer::ReadNumber(Token& tok) {
+    const char* begin = text_.c_str() + pos_;
+    bool exact = false;
+    const size_t n = ScanNumber(begin, tok.number, exact);
+    if (n == 0) return false;
     const char* end = begin + n;
+    tok.kind = TokenKind::Number;
+    tok.text.assign(begin, n);
     pos_ += n;
-    if (ReadDecimalFast(begin, end, tok.number)) return;
+    if (exact) return true;
     // from_chars and strtod both round correctly; strtod settles what from_chars leaves
     // (out of range: infinity, zero or a subnormal, as before).
     if (auto [stop, error] = std::from_chars(begin, end, tok.number); error != std::errc() || stop != end)
         tok.number = std::strtod(tok.text.c_str(), nullptr);
     if (!std::isfinite(tok.number)) Fail("Number out of range: %s", tok.text);
+    return true;
 }
 
 void TokenStream::Push() {

@@ -74,9 +74,9 @@ class Lexer {
     void SkipSpaceAndComments();
     void ReadLineMarker();
     size_t MatchFilename(size_t start) const;  // length of the longest name/filename at start
-    size_t MatchNumber(size_t start) const;    // length of the number at start, 0 if none
-    // Lexes the number of length n at pos_ into tok (kind, text, value) and moves past it.
-    void ReadNumber(size_t n, Token& tok);
+    // Lexes the number at pos_, if one starts there, into tok (kind, text, value) and moves
+    // past it; returns false (and leaves everything unchanged) when none does.
+    bool ReadNumber(Token& tok);
     [[noreturn]] void Fail(const char* format, const std::string& arg) const;
 
     std::string text_;
