@@ -1,7 +1,7 @@
 #include "libshade/primitive_registry.h"
 
+#include <array>
 #include <string_view>
-#include <unordered_map>
 
 #include "libobj/blob.h"
 #include "libobj/box.h"
@@ -42,14 +42,36 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry() {
 }
 
 const PrimitiveEntry* FindPrimitive(std::string_view keyword) {
-    // Called for every object of a scene: one hash lookup in a table built once.
-    static const std::unordered_map<std::string_view, const PrimitiveEntry*> rows = [] {
-        std::unordered_map<std::string_view, const PrimitiveEntry*> byKeyword;
-        for (const PrimitiveEntry& row : PrimitiveRegistry()) byKeyword.emplace(row.keyword, &row);
-        return byKeyword;
+    // Called for every object of a scene: the rows are indexed by first letter and length
+    // (one candidate, compared in full); a key two rows share sends the lookup to a scan.
+    constexpr size_t kLetters = 26, kLengths = 16;
+    constexpr int kNone = -1, kShared = -2;
+    static const std::vector<PrimitiveEntry>& rows = PrimitiveRegistry();
+    const auto key = [](std::string_view word) -> long {
+        if (word.empty() || word.size() >= kLengths || word[0] < 'a' || word[0] > 'z') return -1;
+        return static_cast<long>(static_cast<size_t>(word[0] - 'a') * kLengths + word.size());
+    };
+    static const std::array<int, kLetters * kLengths> index = [&] {
+        std::array<int, kLetters * kLengths> byKey;
+        byKey.fill(kNone);
+        for (size_t i = 0; i < rows.size(); ++i) {
+            const long k = key(rows[i].keyword);
+            if (k < 0) continue;  // not indexed: found by the scan of shared keys only
+            int& slot = byKey[static_cast<size_t>(k)];
+            slot = slot == kNone ? static_cast<int>(i) : kShared;
+        }
+        return byKey;
     }();
-    const auto it = rows.find(keyword);
-    return it == rows.end() ? nullptr : it->second;
+    const long k = key(keyword);
+    const int row = k < 0 ? kShared : index[static_cast<size_t>(k)];
+    if (row >= 0) {
+        const PrimitiveEntry& candidate = rows[static_cast<size_t>(row)];
+        return keyword == candidate.keyword ? &candidate : nullptr;
+    }
+    if (row == kNone) return nullptr;
+    for (const PrimitiveEntry& entry : rows)
+        if (keyword == entry.keyword) return &entry;
+    return nullptr;
 }
 
 bool IsPrimitiveKeyword(std::string_view keyword) {
