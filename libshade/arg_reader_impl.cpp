@@ -96,14 +96,14 @@ bool TokenArgReader::PeekFilename() {
 Surface TokenArgReader::ReadSurface() { return parser_.ParseSurfaceValue(usage_); }
 
 void TokenArgReader::Warn(const std::string& message) {
-    Report(Severity::Warn, keyword_, "%s", message.c_str());
+    Report(Severity::Warn, Location(), "%s", message.c_str());
 }
 
 void TokenArgReader::Advise(const std::string& message) {
-    Report(Severity::Advise, keyword_, "%s", message.c_str());
+    Report(Severity::Advise, Location(), "%s", message.c_str());
 }
 
-void TokenArgReader::Fail(const std::string& message) { FailAt(keyword_, usage_, message); }
+void TokenArgReader::Fail(const std::string& message) { FailAt(Location(), usage_, message); }
 
 void TokenArgReader::WarnAtLocation(const SourceLocation& where, const std::string& message) {
     Report(Severity::Warn, where, "%s", message.c_str());

@@ -28,8 +28,13 @@ class TokenArgReader final : public ArgReader {
   public:
     // `keyword` locates the keyword being read (for Warn/Fail); `usage` is appended to
     // fatal messages and must outlive the reader (it is a literal or a table's text).
-    TokenArgReader(ParserServices& parser, SourceLocation keyword, std::string_view usage)
-        : parser_(parser), keyword_(std::move(keyword)), usage_(usage) {}
+    TokenArgReader(ParserServices& parser, const SourceLocation& keyword, std::string_view usage)
+        : parser_(parser), file_(InternFileName(keyword.file)), line_(keyword.line), usage_(usage) {}
+    // The same at a token's location (kept as the token's interned file name and line: the
+    // parser makes a reader per object, and building a location would copy the name).
+    TokenArgReader(ParserServices& parser, const Token& keyword, std::string_view usage)
+        : parser_(parser), file_(keyword.file ? keyword.file : InternFileName({})),
+          line_(keyword.line), usage_(usage) {}
 
     double ReadNumber() override;
     int ReadInt() override;
@@ -44,7 +49,7 @@ class TokenArgReader final : public ArgReader {
     bool PeekFilename() override;
     Surface ReadSurface() override;
     bool FlipNormals() const override { return parser_.FlipNormals(); }
-    SourceLocation Location() const override { return keyword_; }
+    SourceLocation Location() const override { return {*file_, line_}; }
     void Warn(const std::string& message) override;
     void Advise(const std::string& message) override;
     [[noreturn]] void Fail(const std::string& message) override;
@@ -61,7 +66,8 @@ class TokenArgReader final : public ArgReader {
 
   private:
     ParserServices& parser_;
-    SourceLocation keyword_;
+    const std::string* file_;  // interned (InternFileName)
+    int line_;
     std::string_view usage_;
 };
 

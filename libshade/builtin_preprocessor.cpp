@@ -121,26 +121,52 @@ PpTokens Tokenize(std::string_view s) {
     return out;
 }
 
+// How MentionsMacro treats a character: skipped, the start of a pp-number (a '.' only
+// when a digit follows), of an identifier, or a quote (which goes to cpp).
+enum class ScanClass : unsigned char { Skip, Digit, Dot, Identifier, Quote };
+constexpr std::array<ScanClass, 256> kScanClasses = [] {
+    std::array<ScanClass, 256> table{};
+    for (int c = 0; c < 256; ++c) {
+        const char ch = static_cast<char>(c);
+        table[c] = IsDigit(ch)                 ? ScanClass::Digit
+                   : ch == '.'                 ? ScanClass::Dot
+                   : IsIdentifierStart(ch)     ? ScanClass::Identifier
+                   : ch == '"' || ch == '\'' ? ScanClass::Quote
+                                               : ScanClass::Skip;
+    }
+    return table;
+}();
+ScanClass ScanClassOf(char c) { return kScanClasses[static_cast<unsigned char>(c)]; }
+
 // Whether a line names one of `macros` (so it must be tokenized and expanded). Applies
 // Tokenize's checks, without building tokens: most lines of large scenes mention none.
 template <class Macros>
 bool MentionsMacro(std::string_view line, const Macros& macros) {
-    for (size_t i = 0; i < line.size();) {
-        const char c = line[i];
-        if (c == '"' || c == '\'') throw NeedsCpp{};
-        if (StartsPpNumber(line, i)) {
-            i = PpNumberEnd(line, i);  // its letters are not an identifier (as in Tokenize)
-            continue;
-        }
-        if (!IsIdentifierStart(c)) {
-            ++i;
-            continue;
+    const size_t n = line.size();
+    for (size_t i = 0; i < n;) {
+        switch (ScanClassOf(line[i])) {
+            case ScanClass::Skip:
+                ++i;
+                continue;
+            case ScanClass::Quote:
+                throw NeedsCpp{};
+            case ScanClass::Dot:
+                if (!StartsPpNumber(line, i)) {
+                    ++i;
+                    continue;
+                }
+                [[fallthrough]];
+            case ScanClass::Digit:
+                i = PpNumberEnd(line, i);  // its letters are not an identifier (as in Tokenize)
+                continue;
+            case ScanClass::Identifier:
+                break;
         }
         size_t j = i + 1;
-        while (j < line.size() && IsIdentifierChar(line[j])) ++j;
+        while (j < n && IsIdentifierChar(line[j])) ++j;
         const std::string_view word = line.substr(i, j - i);
         if (IsPredefinedByCpp(word)) throw NeedsCpp{};
-        if (macros.find(word) != macros.end()) return true;
+        if (!macros.empty() && macros.find(word) != macros.end()) return true;
         i = j;
     }
     return false;
@@ -148,10 +174,62 @@ bool MentionsMacro(std::string_view line, const Macros& macros) {
 
 // Whether StripComments copies `c` without looking at it: not the start of a comment or
 // quote, nor anything it rejects.
-bool IsPlain(char c) {
-    const unsigned char u = static_cast<unsigned char>(c);
+constexpr bool IsPlainCharacter(unsigned char u) {
+    const char c = static_cast<char>(u);
     return (u >= 0x20 || c == '\t' || c == '\n' || c == '\r') && u != 0x7f && c != '/' &&
            c != '"' && c != '\\' && c != '\'';
+}
+constexpr std::array<bool, 256> kPlainCharacters = [] {
+    std::array<bool, 256> table{};
+    for (int c = 0; c < 256; ++c) table[c] = IsPlainCharacter(static_cast<unsigned char>(c));
+    return table;
+}();
+bool IsPlain(char c) { return kPlainCharacters[static_cast<unsigned char>(c)]; }
+
+// What IsPlainText makes of a character: nothing to do, a letter or '_' (which may start an
+// identifier), or anything that needs the full preprocessor: '#', '/' (a comment may
+// start), quotes, backslashes, control characters other than tab, newline and return, DEL.
+enum class PlainClass : unsigned char { Plain, IdentifierStart, Special };
+constexpr std::array<PlainClass, 256> kPlainClasses = [] {
+    std::array<PlainClass, 256> table{};
+    for (int c = 0; c < 256; ++c) {
+        const char ch = static_cast<char>(c);
+        const bool control = c < 0x20 && ch != '\t' && ch != '\n' && ch != '\r';
+        table[c] = IsIdentifierStart(ch) ? PlainClass::IdentifierStart
+                   : control || c == 0x7f || ch == '#' || ch == '/' || ch == '"' || ch == '\'' || ch == '\\'
+                       ? PlainClass::Special
+                       : PlainClass::Plain;
+    }
+    return table;
+}();
+
+// Whether `text` is plain: no directive, comment, quote, backslash or control character,
+// and no word a cpp predefines. With no macros defined, the preprocessor's output for plain
+// text is the text itself (with a final newline): every line is copied as it is. One pass
+// (large scenes are mostly plain). Words here are runs of identifier characters starting
+// with a letter or '_' not preceded by an identifier character, which include every
+// identifier of Tokenize's and some letters of pp-numbers (`1.e5`): seeing more words
+// only sends more texts to the full preprocessor, which decides exactly.
+bool IsPlainText(std::string_view text) {
+    const char* p = text.data();
+    const size_t n = text.size();
+    for (size_t i = 0; i < n;) {
+        switch (kPlainClasses[static_cast<unsigned char>(p[i])]) {
+            case PlainClass::Plain:
+                ++i;
+                continue;
+            case PlainClass::Special:
+                return false;
+            case PlainClass::IdentifierStart:
+                break;
+        }
+        const bool wordStart = i == 0 || !IsIdentifierChar(p[i - 1]);
+        size_t j = i + 1;
+        while (j < n && IsIdentifierChar(p[j])) ++j;
+        if (wordStart && IsPredefinedByCpp(text.substr(i, j - i))) return false;
+        i = j;
+    }
+    return true;
 }
 
 // Replaces each comment by a blank followed by the newlines it contained, so every line
@@ -565,6 +643,10 @@ std::string Preprocessor::Run(std::string text, const std::string& fileName, int
 
 std::optional<std::string> PreprocessBuiltin(std::string text, const std::string& fileName,
                                              const std::vector<CommandLineMacro>& predefined) {
+    if (predefined.empty() && IsPlainText(text)) {
+        if (!text.empty() && text.back() != '\n') text += '\n';
+        return text;
+    }
     try {
         Preprocessor preprocessor(predefined);
         return preprocessor.Run(std::move(text), fileName, 0);

@@ -1,6 +1,12 @@
 #include "libshade/lexer.h"
 
 #include <charconv>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <optional>
+#include <thread>
+#include <cstdint>
 #include <cmath>
 #include <cstdlib>
 #include <string_view>
@@ -25,9 +31,10 @@ constexpr Synonym kSynonyms[] = {{"polygon", "poly"},       {"reflective", "refl
 // Implicit Patches primitive (libray/libobj/implicit/README.md), and `patches`, its debug
 // texture (libray/libtext/patches_texture.h). Synonyms map to the spelling
 // the grammar uses; `samples` (the quick reference's spelling) is accepted for `sample`.
-const std::unordered_map<std::string, std::string>& KeywordTable() {
-    static const std::unordered_map<std::string, std::string> table = [] {
-        std::unordered_map<std::string, std::string> t;
+// Keys and values view string literals, so a lookup builds no string.
+const std::unordered_map<std::string_view, std::string_view>& KeywordTable() {
+    static const std::unordered_map<std::string_view, std::string_view> table = [] {
+        std::unordered_map<std::string_view, std::string_view> t;
         const char* words[] = {
             "ambient",     "aperture",    "applysurf",    "area",      "atmosphere", "background",
             "blob",        "blotch",      "body",         "box",       "bump",       "checker",
@@ -49,10 +56,17 @@ const std::unordered_map<std::string, std::string>& KeywordTable() {
             "union",       "up",          "uv",           "verbose",   "window",     "windy",
             "wood"};
         for (const char* w : words) t.emplace(w, w);
-        for (const Synonym& s : kSynonyms) t.emplace(std::string(s.word), std::string(s.keyword));
+        for (const Synonym& s : kSynonyms) t.emplace(s.word, s.keyword);
         return t;
     }();
     return table;
+}
+
+// The canonical spelling of keyword `word`, or an empty view.
+std::string_view FindKeyword(std::string_view word) {
+    static const auto& table = KeywordTable();
+    auto it = table.find(word);
+    return it == table.end() ? std::string_view() : it->second;
 }
 
 bool IsLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
@@ -71,10 +85,7 @@ std::string Abbreviate(const std::string& s) {
 
 }  // namespace
 
-std::string CanonicalKeyword(const std::string& word) {
-    auto it = KeywordTable().find(word);
-    return it == KeywordTable().end() ? std::string() : it->second;
-}
+std::string CanonicalKeyword(const std::string& word) { return std::string(FindKeyword(word)); }
 
 bool SpellsKeyword(std::string_view word, std::string_view keyword) {
     if (word == keyword) return true;
@@ -112,13 +123,17 @@ const std::string* InternFileName(const std::string& name) {
 }
 
 void Lexer::Fail(const char* format, const std::string& arg) const {
-    const std::string quoted = Abbreviate(arg);
-    Report(Severity::Abort, SourceLocation{*file_, line_}, format, quoted.c_str());
-    throw FatalError(Severity::Abort, quoted);  // not reached: Report throws for Abort
+    throw LexicalError{SourceLocation{*file_, line_}, StringPrintf(format, Abbreviate(arg).c_str())};
 }
 
 void Lexer::SkipSpaceAndComments() {
     while (pos_ < text_.size()) {
+        // Runs of blanks first, in locals (most of a large scene's characters between tokens).
+        const char* text = text_.data();
+        size_t p = pos_;
+        while (IsBlank(text[p])) ++p;  // the NUL after the text ends the run
+        pos_ = p;
+        if (pos_ >= text_.size()) return;
         char c = text_[pos_];
         if (c == '\n') {
             ++line_;
@@ -209,75 +224,243 @@ size_t Lexer::MatchFilename(size_t start) const {
     return best;
 }
 
-// D+ | D+ . D* [E] | D* . D+ [E] | D+ E with E = [eE][+-]?D+.
-size_t Lexer::MatchNumber(size_t start) const {
-    size_t p = start;
-    size_t intDigits = 0, fracDigits = 0;
-    while (IsDigit(At(text_, p))) ++p, ++intDigits;
-    if (At(text_, p) == '.') {
-        size_t q = p + 1;
-        while (IsDigit(At(text_, q))) ++q, ++fracDigits;
-        if (intDigits == 0 && fracDigits == 0) return 0;
-        p = q;
-    }
-    if (intDigits == 0 && fracDigits == 0) return 0;
-    char e = At(text_, p);
-    if (e == 'e' || e == 'E') {
-        size_t q = p + 1;
-        if (At(text_, q) == '+' || At(text_, q) == '-') ++q;
-        if (IsDigit(At(text_, q))) {
-            while (IsDigit(At(text_, q))) ++q;
-            p = q;
-        }
-    }
-    return p - start;
+Token Lexer::Next() {
+    Token tok;
+    Next(tok);
+    return tok;
 }
 
-Token Lexer::Next() {
+void Lexer::Next(Token& tok) {
+    try {
+        Lex(tok);
+    } catch (const LexicalError& e) {
+        Report(Severity::Abort, e.where, "%s", e.message.c_str());
+    }
+}
+
+void Lexer::Lex(Token& tok) {
     SkipSpaceAndComments();
-    Token tok;
+    tok.kind = TokenKind::End;
+    tok.text.clear();
+    tok.keyword.clear();
+    tok.number = 0;
     tok.file = file_;
     tok.line = line_;
-    if (pos_ >= text_.size()) return tok;
+    if (pos_ >= text_.size()) return;
     atLineStart_ = false;
 
     char c = text_[pos_];
-    if (size_t n = MatchNumber(pos_); n > 0 && (IsDigit(c) || c == '.')) {
-        tok.kind = TokenKind::Number;
-        tok.text = text_.substr(pos_, n);
-        pos_ += n;
-        // from_chars and strtod both round correctly; strtod settles what from_chars leaves
-        // (out of range: infinity, zero or a subnormal, as before).
-        const char* end = tok.text.data() + tok.text.size();
-        if (auto [stop, error] = std::from_chars(tok.text.data(), end, tok.number);
-            error != std::errc() || stop != end) {
-            tok.number = std::strtod(tok.text.c_str(), nullptr);
-        }
-        if (!std::isfinite(tok.number)) Fail("Number out of range: %s", tok.text);
-        return tok;
-    }
+    if ((IsDigit(c) || c == '.') && ReadNumber(tok)) return;
     if (IsLetter(c) || c == '/' || c == '.') {
         if (size_t n = MatchFilename(pos_); n > 0) {
-            tok.text = text_.substr(pos_, n);
+            tok.text.assign(text_, pos_, n);
             pos_ += n;
             if (n > kMaxNameLength)
                 Fail(StringPrintf("Name longer than %zu characters: %%s", kMaxNameLength).c_str(),
                      tok.text);
             if (tok.text.find('/') != std::string::npos) {
                 tok.kind = TokenKind::Filename;
-            } else if (std::string k = CanonicalKeyword(tok.text); !k.empty()) {
+            } else if (std::string_view k = FindKeyword(tok.text); !k.empty()) {
                 tok.kind = TokenKind::Keyword;
-                tok.keyword = std::move(k);
+                tok.keyword.assign(k);
             } else {
                 tok.kind = TokenKind::Name;
             }
-            return tok;
+            return;
         }
     }
     tok.kind = TokenKind::Char;
-    tok.text = std::string(1, c);
+    tok.text.assign(1, c);
     ++pos_;
-    return tok;
+}
+
+namespace {
+
+// The number at `s` (D+ | D+ . D* [E] | D* . D+ [E] | D+ E with E = [eE][+-]?D+): returns
+// its length, 0 when none starts there. `s` must be NUL-terminated (the NUL ends any number).
+// Reads its value on the way by Clinger's fast path: when the digits make an integer
+// m <= 2^53 and the power of ten 10^e has |e| <= 22, both are exact doubles and one
+// multiplication or division rounds m·10^e correctly, as from_chars does; `exact` says
+// whether `value` was set so.
+size_t ScanNumber(const char* s, double& value, bool& exact) {
+    constexpr uint64_t kMaxExact = uint64_t{1} << 53;
+    static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                              1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                              1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    const char* p = s;
+    uint64_t m = 0;  // the digits (wrapping when more than 19, then unused)
+    for (; IsDigit(*p); ++p) m = m * 10 + static_cast<uint64_t>(*p - '0');
+    const long intDigits = p - s;
+    long fracDigits = 0;
+    if (*p == '.') {
+        const char* q = p + 1;
+        for (; IsDigit(*q); ++q) m = m * 10 + static_cast<uint64_t>(*q - '0');
+        fracDigits = q - p - 1;
+        p = q;
+    }
+    if (intDigits == 0 && fracDigits == 0) return 0;
+    long exponent = -fracDigits;
+    if (*p == 'e' || *p == 'E') {
+        const char* q = p + 1;
+        const bool negative = *q == '-';
+        if (*q == '+' || *q == '-') ++q;
+        if (IsDigit(*q)) {
+            long e = 0;
+            for (; IsDigit(*q); ++q)
+                if (e < 100000) e = e * 10 + (*q - '0');
+            exponent += negative ? -e : e;
+            p = q;
+        }
+    }
+    exact = intDigits + fracDigits <= 19 && m <= kMaxExact && (m == 0 || (exponent >= -22 && exponent <= 22));
+    if (exact) {
+        const double mantissa = static_cast<double>(m);
+        value = m == 0         ? 0
+                : exponent < 0 ? mantissa / kPowersOfTen[-exponent]
+                               : mantissa * kPowersOfTen[exponent];
+    }
+    return static_cast<size_t>(p - s);
+}
+
+}  // namespace
+
+bool Lexer::ReadNumber(Token& tok) {
+    const char* begin = text_.c_str() + pos_;
+    bool exact = false;
+    const size_t n = ScanNumber(begin, tok.number, exact);
+    if (n == 0) return false;
+    const char* end = begin + n;
+    tok.kind = TokenKind::Number;
+    tok.text.assign(begin, n);
+    pos_ += n;
+    if (exact) return true;
+    // from_chars and strtod both round correctly; strtod settles what from_chars leaves
+    // (out of range: infinity, zero or a subnormal, as before).
+    if (auto [stop, error] = std::from_chars(begin, end, tok.number); error != std::errc() || stop != end)
+        tok.number = std::strtod(tok.text.c_str(), nullptr);
+    if (!std::isfinite(tok.number)) Fail("Number out of range: %s", tok.text);
+    return true;
+}
+
+// Lexes a scene ahead of its parser, on its own thread, into blocks of tokens handed over
+// in order; a bounded number of blocks is in flight and consumed blocks are reused.
+class BackgroundLexer {
+  public:
+    explicit BackgroundLexer(Lexer& lexer) : thread_([this, &lexer] { Run(lexer); }) {}
+    ~BackgroundLexer() {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        spare_.notify_one();
+        thread_.join();
+    }
+
+    // The next token, as Lexer::Next would give it (lexical errors reported here).
+    void Next(Token& tok) {
+        while (true) {
+            if (block_ && next_ < block_->count) {
+                tok = std::move(block_->tokens[next_++]);
+                if (tok.kind == TokenKind::End) end_ = tok;
+                return;
+            }
+            if (block_ && block_->last) {
+                if (block_->error)
+                    Report(Severity::Abort, block_->error->where, "%s", block_->error->message.c_str());
+                if (block_->failure) std::rethrow_exception(block_->failure);
+                tok = end_;  // the lexer gives End again and again at the end
+                return;
+            }
+            std::unique_lock<std::mutex> lock(mutex_);
+            if (block_) {
+                spare_blocks_.push_back(std::move(block_));
+                spare_.notify_one();
+            }
+            filled_.wait(lock, [&] { return !full_.empty(); });
+            block_ = std::move(full_.front());
+            full_.pop_front();
+            next_ = 0;
+        }
+    }
+
+  private:
+    static constexpr size_t kBlockTokens = 2048;
+    static constexpr size_t kMaxBlocks = 8;  // in flight: lexed, being read or spare
+
+    struct Block {
+        std::vector<Token> tokens = std::vector<Token>(kBlockTokens);
+        size_t count = 0;
+        bool last = false;                  // the lexer stopped after this block
+        std::optional<LexicalError> error;  // why, when it was a lexical error
+        std::exception_ptr failure;         // why, when it was anything else
+    };
+
+    void Run(Lexer& lexer) {
+        size_t made = 0;
+        while (true) {
+            std::unique_ptr<Block> block;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                spare_.wait(lock, [&] { return stop_ || !spare_blocks_.empty() || made < kMaxBlocks; });
+                if (stop_) return;
+                if (!spare_blocks_.empty()) {
+                    block = std::move(spare_blocks_.back());
+                    spare_blocks_.pop_back();
+                }
+            }
+            if (!block) {
+                block = std::make_unique<Block>();
+                ++made;
+            }
+            block->count = 0;
+            try {
+                while (block->count < kBlockTokens && !block->last) {
+                    Token& tok = block->tokens[block->count];
+                    lexer.Lex(tok);
+                    ++block->count;
+                    block->last = tok.kind == TokenKind::End;
+                }
+            } catch (LexicalError& e) {
+                block->error = std::move(e);
+                block->last = true;
+            } catch (...) {
+                block->failure = std::current_exception();
+                block->last = true;
+            }
+            const bool last = block->last;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                full_.push_back(std::move(block));
+            }
+            filled_.notify_one();
+            if (last) return;
+        }
+    }
+
+    std::mutex mutex_;
+    std::condition_variable filled_, spare_;
+    std::deque<std::unique_ptr<Block>> full_;         // lexed, in order
+    std::vector<std::unique_ptr<Block>> spare_blocks_;  // read, to be reused
+    bool stop_ = false;
+    // The reader's side.
+    std::unique_ptr<Block> block_;
+    size_t next_ = 0;
+    Token end_;
+    std::thread thread_;  // last: starts when the rest is built
+};
+
+TokenStream::TokenStream(std::string text, std::string fileName, bool background)
+    : lexer_(std::move(text), std::move(fileName)), ring_(kInitialRing) {
+    if (background) background_ = std::make_unique<BackgroundLexer>(lexer_);
+}
+
+TokenStream::~TokenStream() = default;
+
+void TokenStream::Produce(Token& tok) {
+    if (background_)
+        background_->Next(tok);
+    else
+        lexer_.Next(tok);
 }
 
 void TokenStream::Push() {
@@ -287,7 +470,7 @@ void TokenStream::Push() {
         ring_ = std::move(grown);
         head_ = 0;
     }
-    ring_[(head_ + count_) & (ring_.size() - 1)] = lexer_.Next();
+    Produce(ring_[(head_ + count_) & (ring_.size() - 1)]);
     ++count_;
 }
 

@@ -60,18 +60,33 @@ bool SpellsKeyword(std::string_view word, std::string_view keyword);
 // distinct file names, and tokens then carry a plain pointer instead of a counted one).
 const std::string* InternFileName(const std::string& name);
 
+// A lexical error found but not reported yet (see Lexer::Lex).
+struct LexicalError {
+    SourceLocation where;
+    std::string message;
+};
+
 class Lexer {
   public:
     // `fileName` names the text in locations until a line marker says otherwise.
     Lexer(std::string text, std::string fileName);
 
     Token Next();
+    // The same into `tok`, reusing its strings' storage (the token stream's ring lexes into
+    // its slots this way, so large scenes allocate nothing per token).
+    void Next(Token& tok);
+    // The same, throwing a lexical error as LexicalError instead of reporting it: a lexer
+    // running ahead on another thread hands the error to the parser's thread, which
+    // reports it when it reaches it.
+    void Lex(Token& tok);
 
   private:
     void SkipSpaceAndComments();
     void ReadLineMarker();
     size_t MatchFilename(size_t start) const;  // length of the longest name/filename at start
-    size_t MatchNumber(size_t start) const;    // length of the number at start, 0 if none
+    // Lexes the number at pos_, if one starts there, into tok (kind, text, value) and moves
+    // past it; returns false (and leaves everything unchanged) when none does.
+    bool ReadNumber(Token& tok);
     [[noreturn]] void Fail(const char* format, const std::string& arg) const;
 
     std::string text_;
@@ -81,12 +96,20 @@ class Lexer {
     bool atLineStart_ = true;
 };
 
+class BackgroundLexer;
+
 // A lexer with arbitrary lookahead, buffered in a ring that is reused (no allocation per
 // token).
 class TokenStream {
   public:
-    TokenStream(std::string text, std::string fileName)
-        : lexer_(std::move(text), std::move(fileName)), ring_(kInitialRing) {}
+    // With `background`, a second thread lexes ahead while the parser reads (for large
+    // scenes on more than one core). The tokens, their locations and the lexical errors are
+    // the same either way; an error is reported on the reading thread when the token it
+    // stopped at is read.
+    TokenStream(std::string text, std::string fileName, bool background = false);
+    ~TokenStream();
+    TokenStream(const TokenStream&) = delete;
+    TokenStream& operator=(const TokenStream&) = delete;
 
     // The k-th token ahead (0 = next), without consuming it. The reference stays valid until
     // the next call of Next, or of Peek with a k of kInitialRing or more (which grows the ring;
@@ -102,7 +125,7 @@ class TokenStream {
         --count_;
     }
     Token Next() {
-        if (count_ == 0) return lexer_.Next();
+        if (count_ == 0) Push();
         Token t = std::move(ring_[head_]);
         head_ = (head_ + 1) & (ring_.size() - 1);
         --count_;
@@ -113,7 +136,10 @@ class TokenStream {
     static constexpr size_t kInitialRing = 4;  // a power of two, like every later size
     void Push();  // lexes one more token into the ring, growing it when full
 
+    void Produce(Token& tok);  // the next token from the lexer, here or in the background
+
     Lexer lexer_;
+    std::unique_ptr<BackgroundLexer> background_;  // null: lexed here, on demand
     std::vector<Token> ring_;
     size_t head_ = 0, count_ = 0;  // ring_[head_] is the next token; count_ are buffered
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <string_view>
+#include <thread>
 #include <unordered_map>
 
 #include "libcommon/limits.h"
@@ -36,19 +37,31 @@ bool IsSurfaceAttribute(const Token& t) {
                        [&](std::string_view a) { return t.keyword == a; });
 }
 
-bool IsAggregateKeyword(const std::string& k) {
+// Keywords are compared as views: a literal's length is then known at compile time and most
+// words are rejected by their length (these run for every object of large scenes).
+bool IsAggregateKeyword(std::string_view k) {
     return k == "list" || k == "grid" || k == "union" || k == "intersect" || k == "difference";
 }
 
 // Keywords that are legal only outside aggregates (spec §2, parsing notes).
-bool IsTopLevelOnly(const std::string& k) {
-    static const char* const kWords[] = {
+bool IsTopLevelOnly(std::string_view k) {
+    static constexpr std::string_view kWords[] = {
         "eyep",       "lookp",  "up",        "fov",         "aperture",     "focaldist",
         "eyesep",     "screen", "window",    "crop",        "sample",       "filter",
         "contrast",   "cutoff", "maxdepth",  "background",  "shadowtransp", "outfile",
         "report",     "frames", "starttime", "framelength", "shutter",      "light",
         "atmosphere", "define", "print"};
-    return std::any_of(std::begin(kWords), std::end(kWords), [&](const char* w) { return k == w; });
+    return std::any_of(std::begin(kWords), std::end(kWords), [&](std::string_view w) { return k == w; });
+}
+
+// Whether a scene of `bytes` characters is lexed on a second thread while it is parsed: when
+// the render may use more than one thread and the text is large enough to repay starting
+// one (1 MB is about 10 ms of lexing).
+bool LexInBackground(size_t bytes, const RenderOptions& options) {
+    constexpr size_t kMinBytes = size_t{1} << 20;
+    const unsigned cores = std::thread::hardware_concurrency();
+    const int threads = options.threads > 0 ? options.threads : static_cast<int>(cores ? cores : 1);
+    return threads > 1 && bytes >= kMinBytes;
 }
 
 enum class TransformKind { Translate, Scale, Rotate, General };
@@ -80,8 +93,10 @@ struct NodeDepth {
 
 class Parser final : public ParserServices {
   public:
-    Parser(std::string text, const std::string& fileName, const RenderOptions& options)
-        : tokens_(std::move(text), fileName) {
+    // `lexInBackground`: see TokenStream.
+    Parser(std::string text, const std::string& fileName, const RenderOptions& options,
+           bool lexInBackground)
+        : tokens_(std::move(text), fileName, lexInBackground) {
         scene_.options = options;
         scopes_.emplace_back();
     }
@@ -96,7 +111,7 @@ class Parser final : public ParserServices {
   private:
     // A reader for the arguments of keyword token `kw`.
     TokenArgReader Args(const Token& kw, const char* usage) {
-        return TokenArgReader(*this, kw.Location(), usage);
+        return TokenArgReader(*this, kw, usage);
     }
 
     void ParseTopLevelItem();
@@ -172,7 +187,7 @@ void Parser::ParseTopLevelItem() {
 bool Parser::ParseScopedItem(std::vector<std::shared_ptr<Object>>& into) {
     const Token& t = tokens_.Peek();
     if (t.kind != TokenKind::Keyword) return false;
-    const std::string& k = t.keyword;
+    const std::string_view k = t.keyword;
     if (k == "surface") {
         ParseSurfaceDefinition();
     } else if (k == "applysurf") {
@@ -486,8 +501,8 @@ bool Parser::PeekSurfaceStart() {
 }
 
 std::shared_ptr<const Surface> Parser::ParseSurface(std::string_view usage) {
-    Token first = tokens_.Peek();
-    TokenArgReader args(*this, first.Location(), usage);
+    const Token& first = tokens_.Peek();  // valid until the token is consumed
+    TokenArgReader args(*this, first, usage);
     Surface base;
     if (first.IsKeyword("cursurf")) {
         tokens_.Next();
@@ -496,10 +511,10 @@ std::shared_ptr<const Surface> Parser::ParseSurface(std::string_view usage) {
             return current ? current : std::make_shared<const Surface>(Surface::Default());
         base = current ? *current : Surface::Default();
     } else if (first.kind == TokenKind::Name) {
-        tokens_.Next();
         auto it = surfaces_.find(first.text);
         if (it == surfaces_.end())
             FailAt(first.Location(), "", "Undefined surface '" + first.text + "'");
+        tokens_.Skip();
         if (!IsSurfaceAttribute(tokens_.Peek())) return it->second;
         base = *it->second;
     } else if (IsSurfaceAttribute(first)) {
@@ -597,7 +612,7 @@ std::shared_ptr<Object> Parser::ParsePrimitive() {
         row->startsArguments(tokens_.Peek().text))
         surfaceFollows = false;
     if (surfaceFollows) surface = ParseSurface(row->usage);
-    TokenArgReader args(*this, kw.Location(), row->usage);
+    TokenArgReader args(*this, kw, row->usage);
     std::shared_ptr<Primitive> prim = row->create(args);
     if (!prim) return nullptr;  // degenerate: the factory has warned
     std::shared_ptr<Object> node = Object::MakePrimitive(std::move(prim));
@@ -773,7 +788,7 @@ std::shared_ptr<Texture> Parser::ParseTexture() {
     }
     if (!row) FailAt(type.Location(), "", "Unknown texture type " + type.Describe());
     Token typeTok = tokens_.Next();
-    TokenArgReader args(*this, typeTok.Location(), row->usage);
+    TokenArgReader args(*this, typeTok, row->usage);
     std::shared_ptr<Texture> texture = row->create(args);
     TransformList transforms;
     ParseTransforms(transforms);
@@ -802,7 +817,8 @@ NodeDepth Parser::DepthOf(const Object* node) const {
 
 Scene ParseSceneText(std::string text, const std::string& fileName,
                      const RenderOptions& options) {
-    return Parser(std::move(text), fileName, options).Parse();
+    const bool background = LexInBackground(text.size(), options);
+    return Parser(std::move(text), fileName, options, background).Parse();
 }
 
 Scene ParseScene(const ParseInput& input, const RenderOptions& options) {

@@ -1,5 +1,8 @@
 #include "libshade/primitive_registry.h"
 
+#include <array>
+#include <string_view>
+
 #include "libobj/blob.h"
 #include "libobj/box.h"
 #include "libobj/cone.h"
@@ -38,22 +41,40 @@ const std::vector<PrimitiveEntry>& PrimitiveRegistry() {
     return rows;
 }
 
-const PrimitiveEntry* FindPrimitive(const std::string& keyword) {
-    // Called for every object of a scene: the keywords' lengths are compared before their
-    // characters, and the table is looked up once.
+const PrimitiveEntry* FindPrimitive(std::string_view keyword) {
+    // Called for every object of a scene: the rows are indexed by first letter and length
+    // (one candidate, compared in full); a key two rows share sends the lookup to a scan.
+    constexpr size_t kLetters = 26, kLengths = 16;
+    constexpr int kNone = -1, kShared = -2;
     static const std::vector<PrimitiveEntry>& rows = PrimitiveRegistry();
-    static const std::vector<std::string_view> keywords = [] {
-        std::vector<std::string_view> k;
-        for (const PrimitiveEntry& row : rows) k.emplace_back(row.keyword);
-        return k;
+    const auto key = [](std::string_view word) -> long {
+        if (word.empty() || word.size() >= kLengths || word[0] < 'a' || word[0] > 'z') return -1;
+        return static_cast<long>(static_cast<size_t>(word[0] - 'a') * kLengths + word.size());
+    };
+    static const std::array<int, kLetters * kLengths> index = [&] {
+        std::array<int, kLetters * kLengths> byKey;
+        byKey.fill(kNone);
+        for (size_t i = 0; i < rows.size(); ++i) {
+            const long k = key(rows[i].keyword);
+            if (k < 0) continue;  // not indexed: found by the scan of shared keys only
+            int& slot = byKey[static_cast<size_t>(k)];
+            slot = slot == kNone ? static_cast<int>(i) : kShared;
+        }
+        return byKey;
     }();
-    const std::string_view word = keyword;
-    for (size_t i = 0; i < keywords.size(); ++i)
-        if (word == keywords[i]) return &rows[i];
+    const long k = key(keyword);
+    const int row = k < 0 ? kShared : index[static_cast<size_t>(k)];
+    if (row >= 0) {
+        const PrimitiveEntry& candidate = rows[static_cast<size_t>(row)];
+        return keyword == candidate.keyword ? &candidate : nullptr;
+    }
+    if (row == kNone) return nullptr;
+    for (const PrimitiveEntry& entry : rows)
+        if (keyword == entry.keyword) return &entry;
     return nullptr;
 }
 
-bool IsPrimitiveKeyword(const std::string& keyword) {
+bool IsPrimitiveKeyword(std::string_view keyword) {
     return FindPrimitive(keyword) != nullptr;
 }
 

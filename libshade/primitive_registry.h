@@ -3,6 +3,8 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "libcommon/arg_reader.h"
@@ -24,9 +26,9 @@ struct PrimitiveEntry {
 const std::vector<PrimitiveEntry>& PrimitiveRegistry();
 
 // The row for `keyword`, or null.
-const PrimitiveEntry* FindPrimitive(const std::string& keyword);
+const PrimitiveEntry* FindPrimitive(std::string_view keyword);
 
 // Whether `keyword` starts a primitive (spec §2 `primitive`): it has a row in the table.
-bool IsPrimitiveKeyword(const std::string& keyword);
+bool IsPrimitiveKeyword(std::string_view keyword);
 
 }  // namespace rs

@@ -92,6 +92,11 @@ TEST(BuiltinPreprocessor, MatchesCppOnMacrosConditionalsAndIncludes) {
         "#define P /usr/u/img/x.rle\nimage P map planar\n(P)\n",
         "#define S(r) sphere r 0 0 0\n#define T S(1) S(2)\nT T\n",
         "#define F(x) scale x\nplain line\nF\n(2) F (\n3\n) after\nplain 2\n",
+        // Plain texts (no directive, comment or quote), one ending without a newline, and
+        // words cpp predefines inside pp-numbers (`1.linux`: only the full preprocessor
+        // tells them from words).
+        "polygon txt001\n-1 -0.5 2.55836e-17 1.e5 2unix x_1 a-b.c\r\n\tcone 0 0 0",
+        "sphere s1 1 0 0 0\n1.linux 2._x\n",
     };
     int n = 0;
     for (const char* text : texts) ExpectSameAsCpp(dir.Write(std::to_string(n++) + ".ray", text));

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <random>
+#include <string>
 #include <vector>
 
 namespace rs {
@@ -61,6 +65,32 @@ TEST(Lexer, Numbers) {
     EXPECT_EQ(t[5].kind, TokenKind::Number);
     EXPECT_DOUBLE_EQ(t[5].number, 7);
     EXPECT_EQ(t[6].kind, TokenKind::Name);
+}
+
+// Every number is the double strtod reads from its spelling (correctly rounded), on the
+// lexer's fast path (few digits, small exponents) and off it (many digits, large exponents,
+// subnormals).
+TEST(Lexer, NumbersRoundAsStrtodDoes) {
+    std::mt19937 random(15);
+    std::uniform_int_distribution<int> digit(0, 9), count(0, 20), exponent(-330, 330);
+    for (int i = 0; i < 20000; ++i) {
+        std::string spelling;
+        for (int d = count(random); d >= 0; --d) spelling += static_cast<char>('0' + digit(random));
+        if (i % 2 == 0) {
+            spelling += '.';
+            for (int d = count(random); d > 0; --d) spelling += static_cast<char>('0' + digit(random));
+        }
+        if (i % 3 == 0) {
+            const int e = i % 6 == 0 ? exponent(random) : exponent(random) / 15;
+            spelling += 'e';
+            spelling += std::to_string(e);
+        }
+        const double expected = std::strtod(spelling.c_str(), nullptr);
+        if (!std::isfinite(expected)) continue;  // out of range: an error, tested above
+        auto t = LexAll(spelling);
+        ASSERT_EQ(t.size(), 1u) << spelling;
+        EXPECT_EQ(t[0].number, expected) << spelling;
+    }
 }
 
 TEST(Lexer, SignsAreSeparateTokens) {
@@ -149,6 +179,45 @@ TEST(TokenStream, PeekDoesNotConsume) {
     EXPECT_EQ(s.Next().text, "b");
     EXPECT_EQ(s.Peek(5).kind, TokenKind::End);
     EXPECT_EQ(s.Next().text, "c");
+}
+
+// Reads `text` through a token stream to its end (peeking ahead as the parser does) and
+// returns each token as "kind text file:line", then the lexical error's message if any.
+std::vector<std::string> ReadStream(const std::string& text, bool background) {
+    std::vector<std::string> out;
+    try {
+        TokenStream s(text, "big.ray", background);
+        while (true) {
+            s.Peek(1);
+            const Token t = s.Next();
+            out.push_back(std::to_string(static_cast<int>(t.kind)) + " " + t.text + " " +
+                          t.Location().file + ":" + std::to_string(t.Location().line));
+            if (t.kind == TokenKind::End) break;
+        }
+        EXPECT_EQ(s.Next().kind, TokenKind::End);  // and again
+    } catch (const FatalError& e) {
+        out.push_back(std::string("error: ") + e.what());
+    }
+    return out;
+}
+
+TEST(TokenStream, BackgroundLexingGivesTheSameTokensAndErrors) {
+    // Far more tokens than the background lexer keeps in flight, with line markers.
+    std::string text;
+    for (int i = 0; i < 30000; ++i) {
+        text += "poly s" + std::to_string(i % 7) + " -1 0.5e-3 (2 * 3)\n";
+        if (i % 5000 == 0) text += "# " + std::to_string(i) + " \"part" + std::to_string(i) + ".ray\"\n";
+    }
+    const std::vector<std::string> here = ReadStream(text, false);
+    EXPECT_EQ(ReadStream(text, true), here);
+    EXPECT_GT(here.size(), 300000u);
+    // A lexical error late in the text stops both at the same token with the same message.
+    const std::string bad = text + "sphere 1e999 0 0 0\n" + text;
+    const std::vector<std::string> badHere = ReadStream(bad, false);
+    ASSERT_EQ(badHere.back().rfind("error: part25000.ray:", 0), 0u) << badHere.back();
+    EXPECT_EQ(ReadStream(bad, true), badHere);
+    // Stopping early (a parse error) ends the background thread cleanly.
+    { TokenStream s(bad, "big.ray", true); EXPECT_EQ(s.Next().text, "poly"); }
 }
 
 }  // namespace
