@@ -34,8 +34,6 @@ class RaySearch {
           fixedTolT_(s_.tolerance / dirLength_),
           fixedFloorT_(std::max(s_.minWidth, s_.tolerance) / dirLength_),
           adaptive_(s_.autoTolerance && (ray.footprintWidth != 0 || ray.footprintSpread != 0)),
-          pruneByRay_(tree.PerCell()),
-          invDir_{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z},
           tolT_(fixedTolT_),
           floorT_(fixedFloorT_) {}
 
@@ -49,7 +47,7 @@ class RaySearch {
         Count(Counters().cellsVisited);
         double a = span.tEnter, b = span.tExit;
         if (!(b >= a)) return false;
-        terms_ = pruneByRay_ ? TermsOnPiece(span.terms, a, b) : span.terms;
+        terms_ = span.terms;
         if (adaptive_) {
             // The footprint is affine in t, so its smaller end value is its minimum here.
             const double width = std::min(ray_.footprintWidth + ray_.footprintSpread * a,
@@ -68,35 +66,6 @@ class RaySearch {
     std::optional<double> result;
 
   private:
-    // Per-cell trees search cells far larger than the ray's piece in them (a patch's root
-    // cell, at the fluids' density: a few dozen terms, of which a handful meet the piece):
-    // the listed rows whose support box meets the piece [a, b] of the ray, in list order.
-    // Every point the search computes on the piece lies in the support box of each term
-    // the sums would not skip there (Field::MayReach), so values and gradients keep their
-    // bits; bounds from this list bound g on the piece (the others are exactly 0 along it),
-    // not on a box around it. The support boxes are padded for the rounding of o + t·d and
-    // of the slab test: 1e-9 of the coordinates involved, far above a few ulps.
-    std::span<const int32_t> TermsOnPiece(std::span<const int32_t> terms, double a, double b) {
-        const Field& field = tree_.GetField();
-        auto largest = [](const Vec3& v) {
-            return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-        };
-        const double reach = largest(ray_.origin) + std::max(std::abs(a), std::abs(b)) *
-                                                        largest(ray_.dir);
-        pieceTerms_.clear();
-        for (int32_t row : terms) {
-            const Bounds3& support = field.TermSupport(row);
-            const double pad = kPiecePadding * (reach + std::max(largest(support.lo),
-                                                                 largest(support.hi)));
-            if (support.Padded(pad).MeetsSegment(ray_, invDir_, a, b)) {
-                pieceTerms_.push_back(row);
-            }
-        }
-        return pieceTerms_;
-    }
-    static constexpr double kPiecePadding = 1e-9;
-
-
     // A sign change of g in [a, b], with its end values.
     struct Bracket {
         double a, ga, b, gb;
@@ -185,12 +154,7 @@ class RaySearch {
             // those points (research note §5's local bounds). Both bounds hold on [a, b];
             // keep the smaller L and the segment's G.
             Count(Counters().segmentBounds);
-            // Per-cell trees: from the piece's terms (see TermsOnPiece), a bound on g along
-            // the ray rather than on the box. Whole trees: the leaf's list is not a
-            // TermsMeeting list of the box, so the full field's bound keeps its bits.
-            const Bounds3 box(ray_.At(a), ray_.At(b));
-            FieldBound local = pruneByRay_ ? tree_.GetField().Bound(box, terms_, nullptr)
-                                           : tree_.GetField().Bound(box);
+            FieldBound local = tree_.GetField().Bound(Bounds3(ray_.At(a), ray_.At(b)));
             lt = std::min(lt, local.L * dirLength_);
             gt = std::min(gt, local.G * dirLength_ * dirLength_);
         }
@@ -240,9 +204,6 @@ class RaySearch {
     double dirLength_;
     double fixedTolT_, fixedFloorT_;  // the fixed tolerance and floor, in units of t
     bool adaptive_;                   // automatic accuracy on a ray with a footprint
-    bool pruneByRay_;                 // per-cell tree: sum the terms meeting the piece only
-    Vec3 invDir_;                     // 1 / ray direction, for the pieces' slab tests
-    std::vector<int32_t> pieceTerms_;  // TermsOnPiece's list of the current leaf
     double tolT_, floorT_;            // those of the current leaf span
     double cachedT_ = std::nan(""), cachedG_ = 0;
     // The current leaf's active terms. A cached end value computed with the previous
