@@ -93,7 +93,7 @@ class Patch {
     // each moved outwards by kSeamMargin·R + `uncertainty` (the largest distance between a
     // root a search may accept and a true root, in world units) plus the rounding of the
     // points o + t·d (kOriginMargin of their size). Every point where the seam rule may
-    // accept a root stays inside, so a search of the narrowed piece returns what the
+    // accept a root (the own term is positive there: d_own < R) stays inside, so a search of the narrowed piece returns what the
     // whole piece's search would, up to which tolerance-sized root. Other neighbours and
     // other kinds leave the piece as it is.
     bool ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, double& t1) const;
