@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <variant>
 
 namespace rs {
 
@@ -76,6 +77,51 @@ bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {
         return !(LengthSquared(qa + e * s) > radius * radius);
     }
     return true;
+}
+
+bool Patch::ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, double& t1) const {
+    if (!box_.ClipRay(ray, t0, t1)) return false;
+    const FieldTerm& own = field_.Terms()[Own()];
+    const auto* point = std::get_if<PointSkeleton>(&own.skeleton);
+    if (!point || field_.Motion() || field_.Deformation()) return true;
+    const Kernel& kernel = own.kernel;
+    auto sameKernel = [&](const Kernel& k) {
+        return k.Kind() == kernel.Kind() && k.Radius() == kernel.Radius() &&
+               k.Thickness() == kernel.Thickness() && k.Stiffness() == kernel.Stiffness() &&
+               k.Strength() == kernel.Strength();
+    };
+    // Distances are measured from p0 = o + t0·d, near the box, so the squares stay small.
+    const double base = t0;
+    const Vec3 p0 = ray.At(base);
+    const double margin =
+        kSeamMargin * kernel.Radius() + uncertainty +
+        kOriginMargin * (Length(ray.origin) + std::max(std::abs(t0), std::abs(t1)) *
+                                                  Length(ray.dir));
+    // d_own − d_j <= margin with d_own < R gives d_own² − d_j² <= margin·(2R + margin).
+    const double slack = margin * (2 * kernel.Radius() + margin);
+    const Vec3 fromOwn = p0 - point->center;
+    const double ownSquared = LengthSquared(fromOwn);
+    double lo = 0, hi = t1 - base;  // the piece as s = t − base
+    const std::vector<int>& members = field_.Rows();
+    for (size_t k = 1; k < members.size(); ++k) {
+        const FieldTerm& other = field_.Terms()[members[k]];
+        const auto* rival = std::get_if<PointSkeleton>(&other.skeleton);
+        if (!rival || other.weight != own.weight || !sameKernel(other.kernel)) continue;
+        // d_own(s)² − d_j(s)² = a·s + b along the ray: keep a·s + b <= slack.
+        const double a = 2 * Dot(ray.dir, rival->center - point->center);
+        const double b = ownSquared - LengthSquared(p0 - rival->center) - slack;
+        if (a > 0) {
+            hi = std::min(hi, -b / a);
+        } else if (a < 0) {
+            lo = std::max(lo, -b / a);
+        } else if (b > 0) {
+            return false;
+        }
+        if (!(lo <= hi)) return false;
+    }
+    t0 = base + lo;
+    t1 = std::min(t1, base + hi);
+    return t0 <= t1;
 }
 
 namespace {

@@ -83,6 +83,21 @@ class Patch {
     // accepted points o + t·d are computed with errors of a few ulps of those lengths
     // (~1e-15 relative), far inside it.
     static constexpr double kSupportMargin = 1e-6, kOriginMargin = 1e-9;
+    // Narrows (t0, t1) to the part of the ray inside Box() where the own term may
+    // predominate; false when none is left. Used where it pays (objects of many point
+    // skeletons, PatchesMethod) and exact only in that sense: for a static, undeformed
+    // point skeleton, each neighbour that is a point of the same kernel and weight
+    // predominates wherever it is the nearer one (the kernels are strictly decreasing on
+    // [0, R), Kernel::Validate), so the own term can win only on its side of their
+    // bisector plane; the ray's piece is cut to the intersection of those half-spaces,
+    // each moved outwards by kSeamMargin·R + `uncertainty` (the largest distance between a
+    // root a search may accept and a true root, in world units) plus the rounding of the
+    // points o + t·d (kOriginMargin of their size). Every point where the seam rule may
+    // accept a root (the own term is positive there: d_own < R) stays inside, so a search of the narrowed piece returns what the
+    // whole piece's search would, up to which tolerance-sized root. Other neighbours and
+    // other kinds leave the piece as it is.
+    bool ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, double& t1) const;
+    static constexpr double kSeamMargin = 1e-3;
     // Adds a deformation term to the patch field (contact.h); predominance, members and box
     // are unchanged.
     void Deform(std::shared_ptr<const FieldDeformation> deformation) {

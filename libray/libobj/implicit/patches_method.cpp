@@ -111,6 +111,13 @@ const LGOctree& PatchesMethod::Tree(int i) const {
     });
 }
 
+double PatchesMethod::SeamUncertainty(const Ray& ray) const {
+    // Roots are accepted within the tolerance, the floor width or the automatic tolerance
+    // of a sign change (lg_octree.h); twice their sum covers every case.
+    return 2 * (settings_.tolerance + settings_.minWidth +
+                settings_.autoToleranceCap * Length(ray.dir));
+}
+
 std::optional<double> PatchesMethod::FirstRoot(const Ray& ray, double tMin, double tMax) const {
     std::optional<MethodHit> hit = Intersect(ray, tMin, tMax);
     return hit ? std::optional<double>(hit->t) : std::nullopt;
@@ -126,7 +133,14 @@ std::optional<MethodHit> PatchesMethod::Intersect(const Ray& ray, double tMin,
         // A ray missing the own term's support meets no acceptable root: skip the patch
         // before its tree is built (the result is the same).
         if (!patches_[patch].MayHoldRoot(ray, tMin, best)) return false;
-        std::optional<double> t = PatchFirstRoot(patches_[patch], Tree(patch), ray, tMin, best);
+        // Objects of per-cell trees search only the piece where the own term may
+        // predominate (Patch::ClipToOwnRegion): at the fluids' density a ray crosses a
+        // few patches' balls for each patch it may hit in.
+        double t0 = tMin, t1 = best;
+        if (cellStore_ && !patches_[patch].ClipToOwnRegion(ray, SeamUncertainty(ray), t0, t1)) {
+            return false;
+        }
+        std::optional<double> t = PatchFirstRoot(patches_[patch], Tree(patch), ray, t0, t1);
         if (!t) return false;
         best = *t;
         bestPatch = patch;

@@ -64,6 +64,9 @@ class PatchesMethod final : public IntersectionMethod {
     OctreeSettings PatchSettings(const Patch& patch) const;
     // Tree of patch i, building it on first use. Thread-safe.
     const LGOctree& Tree(int i) const;
+    // The largest distance between a root a search of this method may accept on `ray`
+    // and the true root it stands for, in world units (Patch::ClipToOwnRegion's margin).
+    double SeamUncertainty(const Ray& ray) const;
     // The patch owning a term's hits (−1 for terms without a patch).
     int PatchOf(int term) const { return term >= 0 ? patchOfTerm_[term] : -1; }
 

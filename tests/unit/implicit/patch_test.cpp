@@ -166,5 +166,59 @@ TEST(Patch, MayHoldRootFalseOnlyWhereTheOwnTermVanishes) {
     }
 }
 
+// ClipToOwnRegion keeps every sampled point of the ray's piece where the own term is
+// positive and may predominate (the seam rule at a tolerance-sized uncertainty), the
+// points where a root may be accepted, and cuts most of the rest;
+// a neighbour of another weight cuts nothing.
+TEST(Patch, ClipToOwnRegionKeepsWhereTheOwnTermMayPredominate) {
+    Rng rng(5);
+    std::vector<FieldTerm> terms{Point("a", {0, 0, 0}), Point("b", {0.6, 0, 0}),
+                                 Point("c", {-0.3, 0.5, 0.1}), Point("d", {0.1, -0.4, -0.5}),
+                                 Point("e", {0.2, 0.3, 0.6}, 0.7)};
+    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
+    const Patch& patch = patches[0];
+    ASSERT_EQ(patch.Members().size(), 5u);
+    const double uncertainty = 1e-6;
+    double kept = 0, whole = 0;
+    for (int i = 0; i < 5000; ++i) {
+        Ray ray{testing::RandomPoint(rng, -3, 3),
+                testing::RandomUnit(rng) * testing::Uniform(rng, 0.2, 2)};
+        double b0 = 0, b1 = 10;
+        if (!patch.Box().ClipRay(ray, b0, b1)) continue;
+        double t0 = 0, t1 = 10;
+        const bool some = patch.ClipToOwnRegion(ray, uncertainty, t0, t1);
+        whole += b1 - b0;
+        if (some) kept += t1 - t0;
+        for (int k = 0; k <= 1000; ++k) {
+            const double t = b0 + (b1 - b0) * k / 1000;
+            // Roots need the own term positive (F = T > 0 and it is the largest).
+            const Vec3 p = ray.At(t);
+            if (!(patch.GetField().TermValue(patch.Own(), p) > 0) ||
+                !patch.PredominatesNear(p, uncertainty)) {
+                continue;
+            }
+            ASSERT_TRUE(some && t >= t0 && t <= t1) << "ray " << i << " t " << t;
+        }
+    }
+    EXPECT_LT(kept, 0.5 * whole);
+    // Along the axis of a and b: the piece ends near their bisector x = 0.3: the cut is
+    // d_a² − d_b² <= δ(2R + δ), i.e. x <= 0.3 + δ(2R + δ)/1.2 with δ = 10⁻³R plus the
+    // uncertainty; the box starts at x = −R. The neighbour of weight 0.7 alone cuts
+    // nothing.
+    const double radius = terms[0].kernel.Radius();
+    const double delta = 1e-3 * radius + uncertainty;
+    Ray axis{{-5, 0, 0}, {1, 0, 0}};
+    std::vector<Patch> pair = BuildPatches(Field({terms[0], terms[1]}), BlendMode::Automatic);
+    double t0 = 0, t1 = 20;
+    ASSERT_TRUE(pair[0].ClipToOwnRegion(axis, uncertainty, t0, t1));
+    EXPECT_NEAR(t0, 5 - radius, 1e-12);
+    EXPECT_NEAR(t1, 5.3 + delta * (2 * radius + delta) / 1.2, 1e-6);
+    std::vector<Patch> lone = BuildPatches(Field({terms[0], terms[4]}), BlendMode::Automatic);
+    t0 = 0, t1 = 20;
+    ASSERT_TRUE(lone[0].ClipToOwnRegion(axis, uncertainty, t0, t1));
+    EXPECT_NEAR(t0, 5 - radius, 1e-12);
+    EXPECT_NEAR(t1, 5 + radius, 1e-12);
+}
+
 }  // namespace
 }  // namespace rs
