@@ -97,11 +97,12 @@ void Field::Sum(const Vec3& p, const Indices& indices, double* value, Vec3* grad
             }
         }
     };
-    // Two loops, so a static field's pays no test of the motion per term. A term beyond its
-    // support box is skipped: it and its gradient are exactly 0 there.
-    if (const FieldMotion* motion = table.motion.get()) {
+    // Two loops, so a static field's (or a moving one's without a ray time) pays no test of
+    // the motion per term; a moving one looks its terms at the ray time up once. A term
+    // beyond its support box is skipped: it and its gradient are exactly 0 there.
+    if (TermsAtTime* now = table.motion ? table.motion->Now() : nullptr) {
         for (const int i : indices) {
-            if (MayReach(table.support[i], p)) add(motion->Resolve(i, table.terms[i]));
+            if (MayReach(table.support[i], p)) add(now->Of(i, table.terms[i]));
         }
     } else {
         for (const int i : indices) {

@@ -48,6 +48,10 @@ struct FieldTerm {
     double weight = 1;
 };
 
+inline const FieldTerm& TermsAtTime::Of(int row, const FieldTerm& reference) {
+    return stamp_[row] == epoch_ ? terms_[row] : Make(row, reference);
+}
+
 struct FieldBound {
     double valueMin = 0, valueMax = 0;
     double L = 0;  // gradient-norm bound

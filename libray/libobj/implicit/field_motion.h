@@ -16,7 +16,8 @@
 // evaluations (values, gradients, predominance) use the term at the current ray time:
 // RayTimeScope sets it for the calling thread, and FieldMotion::Resolve makes the term at
 // that time on first use by a ray, caching it per thread (only the terms a ray's search
-// touches are ever evaluated). With no ray time set, Resolve gives the reference term.
+// touches are ever evaluated). With no ray time set, Resolve gives the reference term. A sum
+// over many terms looks the cache up once (FieldMotion::Now) and asks it per term.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +35,31 @@ struct TermMotion {
     double weightLo = 0, weightHi = 0;
 };
 
+class FieldMotion;
+
+// One thread's terms of one moving field at its current ray time (FieldMotion::Now): row r
+// is current when its stamp equals the epoch; a new time bumps the epoch (O(1)), so stale
+// rows are remade on their next use.
+class TermsAtTime {
+  public:
+    // The term of `row` at this time (`reference`, the table's term of that row, when the
+    // row does not move). Valid until the same thread resolves terms of a different time.
+    // Inline, in field.h (where FieldTerm is complete).
+    inline const FieldTerm& Of(int row, const FieldTerm& reference);
+
+  private:
+    friend class FieldMotion;
+    const FieldTerm& Make(int row, const FieldTerm& reference);
+
+    const FieldMotion* motion_ = nullptr;
+    uint64_t id_ = 0;
+    double time_ = std::numeric_limits<double>::quiet_NaN();
+    uint64_t epoch_ = 1;
+    uint64_t lastUse_ = 0;
+    std::vector<uint64_t> stamp_;  // 0: the row's slot holds no term yet
+    std::vector<FieldTerm> terms_;
+};
+
 class FieldMotion {
   public:
     // Sets term.skeleton and term.weight to their values at `time` for row `row` (the rest
@@ -47,8 +73,12 @@ class FieldMotion {
     // (the table's term of that row) when the row does not move or no time is set. The
     // reference stays valid until the same thread resolves terms of a different time.
     const FieldTerm& Resolve(int row, const FieldTerm& reference) const;
+    // The calling thread's terms at its ray time, or null when no ray time is set (every
+    // row then is its reference term). One lookup serves a whole sum.
+    TermsAtTime* Now() const;
 
   private:
+    friend class TermsAtTime;
     std::vector<TermMotion> terms_;
     TermAt termAt_;
     uint64_t id_;  // unique per FieldMotion: the key of the per-thread caches
