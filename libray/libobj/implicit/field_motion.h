@@ -10,7 +10,12 @@
 //     widen to [max(0, dmin − ρ), dmax + ρ] and support boxes grow by ρ;
 //   - [weightLo, weightHi] holds the weight at every t (of one sign: the builder checks);
 //   - the kernel does not move (animated kernel parameters are refused with the shutter
-//     open).
+//     open);
+//   - for a point skeleton, a box holding its centre at every t (the interval ranges of its
+//     coordinates). It lies within the reach of the reference centre, and it bounds tighter:
+//     d_t(p) lies between p's nearest and farthest distances to the box, so a box's distance
+//     range is the two boxes' nearest and farthest distances, and the support box is the
+//     centre box padded by R (a point moving along a line sweeps a thin box, not a ball).
 // Field::Bound and the other box functions use these swept bounds, so every octree,
 // patch box and neighbour list built from them holds at every time of the shutter. Point
 // evaluations (values, gradients, predominance) use the term at the current ray time:
@@ -25,6 +30,8 @@
 #include <limits>
 #include <vector>
 
+#include "libcommon/bounds.h"
+
 namespace rs {
 
 struct FieldTerm;
@@ -33,6 +40,8 @@ struct TermMotion {
     bool moving = false;  // false: the term is the same at every time
     double reach = 0;
     double weightLo = 0, weightHi = 0;
+    bool centreBoxed = false;  // true: a moving point skeleton whose centre stays in `centres`
+    Bounds3 centres;
 };
 
 class FieldMotion;
