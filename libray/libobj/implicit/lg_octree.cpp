@@ -398,9 +398,8 @@ LGOctree::Decision LGOctree::Decide(const Bounds3& box, int depth, LatticePoint 
     double b = HalfDiagonal(box);
     // The cell's edge in lattice steps (>= 2 down to maxDepth), and its centre's point.
     const uint32_t edge = 1u << (s.maxDepth + 1 - depth), half = edge / 2;
-    // A moving field's centre value varies within the shutter (field_motion.h): heuristic
-    // 1 then needs it beyond b·L at every time, from its range at the centre over time, and
-    // no other test uses the value at one time (1bis is off, 3 makes a leaf regardless).
+    // A moving field's centre value varies within the shutter: heuristic 1 then needs its
+    // range there beyond b·L, and no test uses it at one time (1bis off, 3 leaves anyway).
     const bool moving = field_.Motion() != nullptr;
     double gc = moving ? 0
                        : value(centre, LatticePoint{low.x + half, low.y + half, low.z + half}) -
