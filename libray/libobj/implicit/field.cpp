@@ -23,13 +23,52 @@ Bounds3 TermSupportBounds(const FieldTerm& term) {
     return SkeletonBounds(term.skeleton).Padded(term.kernel.Radius());
 }
 
+namespace {
+
+// The distance range over `box` of a moving term's skeleton at every time of the interval
+// (field_motion.h): between the box's and the centre box's nearest and farthest points for
+// a point, else the reference's range widened by the reach.
+DistanceRange MovingDistanceRange(const TermMotion& m, const Skeleton& reference,
+                                  const Bounds3& box) {
+    if (m.centreBoxed) {
+        // Per axis: the gap between the two intervals, and their farthest ends' distance.
+        const Bounds3& c = m.centres;
+        double near2 = 0, far2 = 0;
+        const auto axis = [&](double boxLo, double boxHi, double lo, double hi) {
+            const double gap = std::max(0.0, std::max(lo - boxHi, boxLo - hi));
+            const double far = std::max(boxHi - lo, hi - boxLo);
+            near2 += gap * gap;
+            far2 += far * far;
+        };
+        axis(box.lo.x, box.hi.x, c.lo.x, c.hi.x);
+        axis(box.lo.y, box.hi.y, c.lo.y, c.hi.y);
+        axis(box.lo.z, box.hi.z, c.lo.z, c.hi.z);
+        const double near = std::sqrt(near2);
+        return {near, std::max(std::sqrt(far2), near)};
+    }
+    DistanceRange r = SkeletonDistanceRange(reference, box);
+    r.min = std::max(0.0, r.min - m.reach);
+    r.max += m.reach;
+    return r;
+}
+
+// The same at one point.
+DistanceRange MovingDistanceRange(const TermMotion& m, const Skeleton& reference,
+                                  const Vec3& p) {
+    return MovingDistanceRange(m, reference, Bounds3(p, p));
+}
+
+}  // namespace
+
 Field::Field(std::vector<FieldTerm> terms, std::shared_ptr<const FieldMotion> motion) {
     auto table = std::make_shared<TermTable>();
     table->support.reserve(terms.size());
     for (size_t i = 0; i < terms.size(); ++i) {
         Bounds3 support = TermSupportBounds(terms[i]);
         if (motion && motion->Of(static_cast<int>(i)).moving) {
-            support = support.Padded(motion->Of(static_cast<int>(i)).reach);
+            const TermMotion& m = motion->Of(static_cast<int>(i));
+            support = m.centreBoxed ? m.centres.Padded(terms[i].kernel.Radius())
+                                    : support.Padded(m.reach);
         }
         table->support.push_back(support);
     }
@@ -48,13 +87,10 @@ Field Field::Subset(std::vector<int> rows) const {
 }
 
 DistanceRange Field::SweptDistanceRange(int i, const Bounds3& box) const {
-    DistanceRange r = SkeletonDistanceRange(table_->terms[i].skeleton, box);
     if (const FieldMotion* motion = table_->motion.get(); motion && motion->Of(i).moving) {
-        const double reach = motion->Of(i).reach;
-        r.min = std::max(0.0, r.min - reach);
-        r.max += reach;
+        return MovingDistanceRange(motion->Of(i), table_->terms[i].skeleton, box);
     }
-    return r;
+    return SkeletonDistanceRange(table_->terms[i].skeleton, box);
 }
 
 void Field::WeightRange(int i, double& lo, double& hi) const {
@@ -97,11 +133,12 @@ void Field::Sum(const Vec3& p, const Indices& indices, double* value, Vec3* grad
             }
         }
     };
-    // Two loops, so a static field's pays no test of the motion per term. A term beyond its
-    // support box is skipped: it and its gradient are exactly 0 there.
-    if (const FieldMotion* motion = table.motion.get()) {
+    // Two loops, so a static field's (or a moving one's without a ray time) pays no test of
+    // the motion per term; a moving one looks its terms at the ray time up once. A term
+    // beyond its support box is skipped: it and its gradient are exactly 0 there.
+    if (TermsAtTime* now = table.motion ? table.motion->Now() : nullptr) {
         for (const int i : indices) {
-            if (MayReach(table.support[i], p)) add(motion->Resolve(i, table.terms[i]));
+            if (MayReach(table.support[i], p)) add(now->Of(i, table.terms[i]));
         }
     } else {
         for (const int i : indices) {
@@ -160,6 +197,57 @@ void Field::ActiveTerms(const Bounds3& box, std::span<const int32_t> terms,
     }
 }
 
+namespace {
+
+// Adds term t's bounds over the box to fb (Field::Bound), `moves` its motion when it moves
+// (null: t itself at every point of the box); false when t vanishes on the whole box. With
+// `range`, also stores TermRange's numbers in it.
+bool AddTermBound(const FieldTerm& t, const TermMotion* moves, const Bounds3& box,
+                  FieldBound& fb, TermValueRange* range) {
+    // A moving term (field_motion.h): its distance range over the interval, its weight range.
+    const DistanceRange r = moves ? MovingDistanceRange(*moves, t.skeleton, box)
+                                  : SkeletonDistanceRange(t.skeleton, box);
+    if (r.min >= t.kernel.Radius()) return false;  // f = f' = f'' = 0 on the whole box
+    KernelBounds kb = t.kernel.Bounds(r.min, r.max);
+    // w·f over w in [wLo, wHi] and f in [fmin, fmax] (f >= 0): the extremes are products
+    // of ends (for a static term, of its one weight).
+    const double wLo = moves ? moves->weightLo : t.weight;
+    const double wHi = moves ? moves->weightHi : t.weight;
+    const double w = std::max(std::abs(wLo), std::abs(wHi));
+    double lo = wLo * (wLo >= 0 ? kb.valueMin : kb.valueMax);
+    double hi = wLo * (wLo >= 0 ? kb.valueMax : kb.valueMin);
+    if (moves) {
+        lo = std::min(lo, wHi * (wHi >= 0 ? kb.valueMin : kb.valueMax));
+        hi = std::max(hi, wHi * (wHi >= 0 ? kb.valueMax : kb.valueMin));
+    }
+    // TermRange's numbers: w·f at the two ends of the distance range, ordered.
+    if (range) *range = {std::min(lo, hi), std::max(lo, hi)};
+    fb.valueMin += lo;
+    fb.valueMax += hi;
+    fb.L += w * kb.maxSlope;
+    // max(|f''|, |f'|/r) covers the convex eigenvalues; non-convex kinds add |f'|·X. A
+    // moving non-convex skeleton has no curvature bound here: X infinite. Points, the
+    // commonest kind, are convex (X = 0) without the dispatch.
+    double curvature = kb.maxCurvature;
+    const double extra = std::holds_alternative<PointSkeleton>(t.skeleton) ? 0
+                         : moves && !SkeletonIsConvex(t.skeleton)
+                             ? std::numeric_limits<double>::infinity()
+                             : ExtraDistanceCurvature(t.skeleton, box);
+    if (extra > 0 && kb.maxSlope > 0) curvature = std::max(curvature, kb.maxSlope * extra);
+    fb.G += w * curvature;
+    fb.minDistance = std::min(fb.minDistance, r.min);
+    ++fb.activeTerms;
+    return true;
+}
+
+FieldBound EmptyBound() {
+    FieldBound fb;
+    fb.minDistance = std::numeric_limits<double>::infinity();
+    return fb;
+}
+
+}  // namespace
+
 FieldBound Field::Bound(const Bounds3& box) const { return Bound(box, rows_, nullptr); }
 
 FieldBound Field::Bound(const Bounds3& box, std::span<const int32_t> terms,
@@ -167,57 +255,40 @@ FieldBound Field::Bound(const Bounds3& box, std::span<const int32_t> terms,
     Count(FieldCounterIds().bounds);
     if (termRanges) termRanges->assign(terms.size(), TermValueRange{});
     const TermTable& table = *table_;
-    FieldBound fb;
-    fb.minDistance = std::numeric_limits<double>::infinity();
+    FieldBound fb = EmptyBound();
     const FieldMotion* motion = table.motion.get();
     for (size_t k = 0; k < terms.size(); ++k) {
         const int i = terms[k];
         if (!MayReach(table.support[i], box)) continue;
-        const FieldTerm& t = table.terms[i];
-        // A moving term (field_motion.h): distances widened by its reach, its weight range.
         const TermMotion* moves = motion && motion->Of(i).moving ? &motion->Of(i) : nullptr;
-        DistanceRange r = SkeletonDistanceRange(t.skeleton, box);
-        if (moves) {
-            r.min = std::max(0.0, r.min - moves->reach);
-            r.max += moves->reach;
-        }
-        if (r.min >= t.kernel.Radius()) continue;  // f = f' = f'' = 0 on the whole box
-        KernelBounds kb = t.kernel.Bounds(r.min, r.max);
-        // w·f over w in [wLo, wHi] and f in [fmin, fmax] (f >= 0): the extremes are
-        // products of ends (for a static term, of its one weight).
-        const double wLo = moves ? moves->weightLo : t.weight;
-        const double wHi = moves ? moves->weightHi : t.weight;
-        const double w = std::max(std::abs(wLo), std::abs(wHi));
-        double lo = wLo * (wLo >= 0 ? kb.valueMin : kb.valueMax);
-        double hi = wLo * (wLo >= 0 ? kb.valueMax : kb.valueMin);
-        if (moves) {
-            lo = std::min(lo, wHi * (wHi >= 0 ? kb.valueMin : kb.valueMax));
-            hi = std::max(hi, wHi * (wHi >= 0 ? kb.valueMax : kb.valueMin));
-        }
-        // TermRange's numbers: w·f at the two ends of the distance range, ordered.
-        if (termRanges) (*termRanges)[k] = {std::min(lo, hi), std::max(lo, hi)};
-        fb.valueMin += lo;
-        fb.valueMax += hi;
-        fb.L += w * kb.maxSlope;
-        // max(|f''|, |f'|/r) covers the convex eigenvalues; non-convex kinds add |f'|·X. A
-        // moving non-convex skeleton has no curvature bound here: X infinite.
-        double curvature = kb.maxCurvature;
-        const double extra = moves && !SkeletonIsConvex(t.skeleton)
-                                 ? std::numeric_limits<double>::infinity()
-                                 : ExtraDistanceCurvature(t.skeleton, box);
-        if (extra > 0 && kb.maxSlope > 0) curvature = std::max(curvature, kb.maxSlope * extra);
-        fb.G += w * curvature;
-        fb.minDistance = std::min(fb.minDistance, r.min);
-        ++fb.activeTerms;
+        AddTermBound(table.terms[i], moves, box, fb, termRanges ? &(*termRanges)[k] : nullptr);
     }
-    if (deformation_) {
-        FieldBound db = deformation_->Bound(box);
-        fb.valueMin += db.valueMin;
-        fb.valueMax += db.valueMax;
-        fb.L += db.L;
-        fb.G += db.G;
-    }
+    AddDeformationBound(box, fb);
     return fb;
+}
+
+FieldBound Field::BoundAtRayTime(const Bounds3& box) const {
+    TermsAtTime* now = table_->motion ? table_->motion->Now() : nullptr;
+    if (!now) return Bound(box);
+    Count(FieldCounterIds().bounds);
+    const TermTable& table = *table_;
+    FieldBound fb = EmptyBound();
+    for (const int i : rows_) {
+        if (MayReach(table.support[i], box)) {
+            AddTermBound(now->Of(i, table.terms[i]), nullptr, box, fb, nullptr);
+        }
+    }
+    AddDeformationBound(box, fb);
+    return fb;
+}
+
+void Field::AddDeformationBound(const Bounds3& box, FieldBound& fb) const {
+    if (!deformation_) return;
+    const FieldBound db = deformation_->Bound(box);
+    fb.valueMin += db.valueMin;
+    fb.valueMax += db.valueMax;
+    fb.L += db.L;
+    fb.G += db.G;
 }
 
 void Field::ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& lo,
@@ -227,8 +298,13 @@ void Field::ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& 
     for (const int i : terms) {
         if (!MayReach(table.support[i], p)) continue;
         const FieldTerm& t = table.terms[i];
-        const double d = SkeletonDistance(t.skeleton, p), reach = TermReach(i);
-        const double near = t.kernel.Value(std::max(0.0, d - reach)), far = t.kernel.Value(d + reach);
+        DistanceRange r;
+        if (const FieldMotion* motion = table.motion.get(); motion && motion->Of(i).moving) {
+            r = MovingDistanceRange(motion->Of(i), t.skeleton, p);
+        } else {
+            r.min = r.max = SkeletonDistance(t.skeleton, p);
+        }
+        const double near = t.kernel.Value(r.min), far = t.kernel.Value(r.max);
         double wLo, wHi;
         WeightRange(i, wLo, wHi);
         lo += std::min({wLo * near, wLo * far, wHi * near, wHi * far});

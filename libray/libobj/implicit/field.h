@@ -22,8 +22,8 @@
 //
 // A field may move (field_motion.h: skeleton motion blur): its table then holds reference
 // terms and a FieldMotion. Every box function (Bound, TermRange, ActiveTerms, TermsMeeting,
-// SupportBounds, TermSupport) then holds for every time of the shutter interval: distance
-// ranges widened by each term's reach, weights over their intervals, and X infinite for a
+// SupportBounds, TermSupport) then holds for every time of the shutter interval: each
+// term's distance range swept over it (field_motion.h: the reach, or a point's centre box), weights over their intervals, and X infinite for a
 // moving non-convex kind; every point function (values, gradients, TermValue, TermAt) uses
 // the terms at the calling thread's ray time (RayTimeScope).
 #pragma once
@@ -47,6 +47,10 @@ struct FieldTerm {
     Kernel kernel;
     double weight = 1;
 };
+
+inline const FieldTerm& TermsAtTime::Of(int row, const FieldTerm& reference) {
+    return stamp_[row] == epoch_ ? terms_[row] : Make(row, reference);
+}
 
 struct FieldBound {
     double valueMin = 0, valueMax = 0;
@@ -98,6 +102,9 @@ class Field {
     const FieldTerm& TermAt(int i) const {
         return table_->motion ? table_->motion->Resolve(i, table_->terms[i]) : table_->terms[i];
     }
+    // Whether TermAt gives the terms at a ray time: a moving field with the calling
+    // thread's ray time set (false for a static field, whose terms never move).
+    bool AtRayTime() const { return table_->motion && table_->motion->Now(); }
     // The box outside of which row i vanishes (at every time of the shutter interval).
     const Bounds3& TermSupport(int i) const { return table_->support[i]; }
     // |w|·max|f'| of row i at every time: its Lipschitz constant in space.
@@ -153,9 +160,14 @@ class Field {
     // both; termRanges is resized to terms.size()).
     FieldBound Bound(const Bounds3& box, std::span<const int32_t> terms,
                      std::vector<TermValueRange>* termRanges) const;
+    // Bound(box) of the field at the calling thread's ray time only (RayTimeScope): for a
+    // moving field with a ray time set, every moving term's bounds at that time (tighter
+    // than the swept ones, and valid only for searches at that time); else Bound(box).
+    FieldBound BoundAtRayTime(const Bounds3& box) const;
     // [lo, hi] containing F(p) at every time of a moving field's shutter interval, from
     // the listed rows (as for Value(p, terms)) and the deformation's value: each term's
-    // weight range times the kernel at d_ref(p) ∓ reach (f is monotone). A cheap point
+    // weight range times the kernel at the ends of its distance range at p over the
+    // interval (f is monotone). A cheap point
     // version of Bound's value range, for the octree build.
     void ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& lo, double& hi) const;
     // [lo, hi] containing w_i f_i(d_i(p)) for every p in the box (f is monotone in d), row i.
@@ -173,6 +185,8 @@ class Field {
     // Row i's distance range over the box at every time, and its weight interval.
     DistanceRange SweptDistanceRange(int i, const Bounds3& box) const;
     void WeightRange(int i, double& lo, double& hi) const;
+    // Adds the deformation's bounds over the box (if any) to fb.
+    void AddDeformationBound(const Bounds3& box, FieldBound& fb) const;
 
     // The sums of F (into *value) and ∇F (into *gradient) over the rows `indices` yields,
     // as selected; one loop, so ValueAndGradient shares each term's distance.

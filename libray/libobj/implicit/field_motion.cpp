@@ -13,45 +13,9 @@ namespace {
 
 thread_local double tRayTime = std::numeric_limits<double>::quiet_NaN();
 
-// One thread's terms of one FieldMotion at one time: row r is current when stamp[r] ==
-// epoch; a new time bumps the epoch (O(1)), so stale rows are remade on their next use.
-struct TermCache {
-    uint64_t id = 0;
-    double time = std::numeric_limits<double>::quiet_NaN();
-    uint64_t epoch = 1;
-    uint64_t lastUse = 0;
-    std::vector<uint64_t> stamp;  // 0: the row's slot holds no term yet
-    std::vector<FieldTerm> terms;
-};
-
 // A few caches per thread (one per moving object a ray meets), least recently used first
 // to go: bounded memory, however many frames and objects come and go.
 constexpr size_t kCachesPerThread = 8;
-
-TermCache& CacheFor(uint64_t id, size_t rows) {
-    thread_local std::vector<TermCache> caches;
-    thread_local uint64_t clock = 0;
-    thread_local size_t last = 0;  // the cache found last time: every term of a sum asks
-    if (last < caches.size() && caches[last].id == id) return caches[last];
-    ++clock;
-    TermCache* oldest = nullptr;
-    for (TermCache& c : caches) {
-        if (c.id == id) {
-            c.lastUse = clock;
-            last = static_cast<size_t>(&c - caches.data());
-            return c;
-        }
-        if (!oldest || c.lastUse < oldest->lastUse) oldest = &c;
-    }
-    TermCache& c = caches.size() < kCachesPerThread ? caches.emplace_back() : *oldest;
-    last = static_cast<size_t>(&c - caches.data());
-    c.id = id;
-    c.time = std::numeric_limits<double>::quiet_NaN();
-    c.lastUse = clock;
-    c.stamp.assign(rows, 0);
-    c.terms.assign(rows, FieldTerm{});
-    return c;
-}
 
 std::atomic<uint64_t> gNextMotionId{1};
 
@@ -60,21 +24,54 @@ std::atomic<uint64_t> gNextMotionId{1};
 FieldMotion::FieldMotion(std::vector<TermMotion> terms, TermAt termAt)
     : terms_(std::move(terms)), termAt_(std::move(termAt)), id_(gNextMotionId++) {}
 
-const FieldTerm& FieldMotion::Resolve(int row, const FieldTerm& reference) const {
+TermsAtTime* FieldMotion::Now() const {
     const double time = tRayTime;
-    if (!terms_[row].moving || std::isnan(time)) return reference;
-    TermCache& cache = CacheFor(id_, terms_.size());
-    if (!(cache.time == time)) {
-        cache.time = time;
-        ++cache.epoch;
+    if (std::isnan(time)) return nullptr;
+    thread_local std::vector<TermsAtTime> caches;
+    thread_local uint64_t clock = 0;
+    thread_local size_t last = 0;  // the cache found last time: most lookups ask it again
+    TermsAtTime* found = last < caches.size() && caches[last].id_ == id_ ? &caches[last] : nullptr;
+    if (!found) {
+        ++clock;
+        TermsAtTime* oldest = nullptr;
+        for (TermsAtTime& c : caches) {
+            if (c.id_ == id_) {
+                found = &c;
+                break;
+            }
+            if (!oldest || c.lastUse_ < oldest->lastUse_) oldest = &c;
+        }
+        if (!found) {
+            found = caches.size() < kCachesPerThread ? &caches.emplace_back() : oldest;
+            found->id_ = id_;
+            found->time_ = std::numeric_limits<double>::quiet_NaN();
+            found->stamp_.assign(terms_.size(), 0);
+            found->terms_.assign(terms_.size(), FieldTerm{});
+        }
+        found->motion_ = this;
+        found->lastUse_ = clock;
+        last = static_cast<size_t>(found - caches.data());
     }
-    FieldTerm& term = cache.terms[row];
-    if (cache.stamp[row] != cache.epoch) {
-        if (cache.stamp[row] == 0) term = reference;  // name and kernel, once
-        termAt_(row, time, term);
-        cache.stamp[row] = cache.epoch;
+    if (!(found->time_ == time)) {
+        found->time_ = time;
+        ++found->epoch_;
     }
+    return found;
+}
+
+const FieldTerm& TermsAtTime::Make(int row, const FieldTerm& reference) {
+    if (!motion_->terms_[row].moving) return reference;
+    FieldTerm& term = terms_[row];
+    if (stamp_[row] == 0) term = reference;  // name and kernel, once
+    motion_->termAt_(row, time_, term);
+    stamp_[row] = epoch_;
     return term;
+}
+
+const FieldTerm& FieldMotion::Resolve(int row, const FieldTerm& reference) const {
+    if (!terms_[row].moving) return reference;
+    TermsAtTime* now = Now();
+    return now ? now->Of(row, reference) : reference;
 }
 
 RayTimeScope::RayTimeScope(double time) : previous_(tRayTime) { tRayTime = time; }

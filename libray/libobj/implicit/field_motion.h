@@ -10,19 +10,27 @@
 //     widen to [max(0, dmin − ρ), dmax + ρ] and support boxes grow by ρ;
 //   - [weightLo, weightHi] holds the weight at every t (of one sign: the builder checks);
 //   - the kernel does not move (animated kernel parameters are refused with the shutter
-//     open).
+//     open);
+//   - for a point skeleton, a box holding its centre at every t (the interval ranges of its
+//     coordinates). It lies within the reach of the reference centre, and it bounds tighter:
+//     d_t(p) lies between p's nearest and farthest distances to the box, so a box's distance
+//     range is the two boxes' nearest and farthest distances, and the support box is the
+//     centre box padded by R (a point moving along a line sweeps a thin box, not a ball).
 // Field::Bound and the other box functions use these swept bounds, so every octree,
 // patch box and neighbour list built from them holds at every time of the shutter. Point
 // evaluations (values, gradients, predominance) use the term at the current ray time:
 // RayTimeScope sets it for the calling thread, and FieldMotion::Resolve makes the term at
 // that time on first use by a ray, caching it per thread (only the terms a ray's search
-// touches are ever evaluated). With no ray time set, Resolve gives the reference term.
+// touches are ever evaluated). With no ray time set, Resolve gives the reference term. A sum
+// over many terms looks the cache up once (FieldMotion::Now) and asks it per term.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <vector>
+
+#include "libcommon/bounds.h"
 
 namespace rs {
 
@@ -32,6 +40,33 @@ struct TermMotion {
     bool moving = false;  // false: the term is the same at every time
     double reach = 0;
     double weightLo = 0, weightHi = 0;
+    bool centreBoxed = false;  // true: a moving point skeleton whose centre stays in `centres`
+    Bounds3 centres;
+};
+
+class FieldMotion;
+
+// One thread's terms of one moving field at its current ray time (FieldMotion::Now): row r
+// is current when its stamp equals the epoch; a new time bumps the epoch (O(1)), so stale
+// rows are remade on their next use.
+class TermsAtTime {
+  public:
+    // The term of `row` at this time (`reference`, the table's term of that row, when the
+    // row does not move). Valid until the same thread resolves terms of a different time.
+    // Inline, in field.h (where FieldTerm is complete).
+    inline const FieldTerm& Of(int row, const FieldTerm& reference);
+
+  private:
+    friend class FieldMotion;
+    const FieldTerm& Make(int row, const FieldTerm& reference);
+
+    const FieldMotion* motion_ = nullptr;
+    uint64_t id_ = 0;
+    double time_ = std::numeric_limits<double>::quiet_NaN();
+    uint64_t epoch_ = 1;
+    uint64_t lastUse_ = 0;
+    std::vector<uint64_t> stamp_;  // 0: the row's slot holds no term yet
+    std::vector<FieldTerm> terms_;
 };
 
 class FieldMotion {
@@ -47,8 +82,12 @@ class FieldMotion {
     // (the table's term of that row) when the row does not move or no time is set. The
     // reference stays valid until the same thread resolves terms of a different time.
     const FieldTerm& Resolve(int row, const FieldTerm& reference) const;
+    // The calling thread's terms at its ray time, or null when no ray time is set (every
+    // row then is its reference term). One lookup serves a whole sum.
+    TermsAtTime* Now() const;
 
   private:
+    friend class TermsAtTime;
     std::vector<TermMotion> terms_;
     TermAt termAt_;
     uint64_t id_;  // unique per FieldMotion: the key of the per-thread caches

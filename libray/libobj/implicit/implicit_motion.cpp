@@ -146,6 +146,14 @@ std::string TermMotionOf(const ImplicitDescription& d, size_t index, double refe
     if (referenceWeight > 0 ? !(wLo > 0) : !(wHi <= 0)) {
         return StringPrintf("skeleton '%s': its weight changes sign during the shutter", who);
     }
+    if (e.kind == SkeletonKind::Point) {
+        motion.centreBoxed = true;
+        for (size_t c = 0; c < 3; ++c) {
+            const auto [lo, hi] = m.Range(c);
+            motion.centres.lo[static_cast<int>(c)] = lo;
+            motion.centres.hi[static_cast<int>(c)] = hi;
+        }
+    }
     motion.moving = true;
     motion.weightLo = wLo;
     motion.weightHi = wHi;

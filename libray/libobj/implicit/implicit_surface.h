@@ -77,7 +77,7 @@ class ImplicitSurface final : public Primitive {
     // skeleton at the hit, the patch that method patches would report).
     std::string PatchName(const PrimitiveHit& hit) const;
 
-    static constexpr double kSliceReach = 0.125;
+    static constexpr double kSliceReach = 1.0 / 6;
     static constexpr int kMaxTimeSlices = 8;
 
   private:

@@ -360,11 +360,16 @@ double LGOctree::LatticeValue(const Vec3& p, LatticePoint q, std::span<const int
 }
 
 // g's range at `centre` over the shutter for a moving field (g = F − T there being `gc` at
-// the current time); {gc, gc} for a static one.
+// the current time); {gc, gc} for a static one. The range lies within the cell's, so when
+// that is within ±b·L of T heuristic 1 cannot fire: {0, 0}, without the evaluation.
 std::pair<double, double> LGOctree::CentreRangeOverShutter(const Vec3& centre,
                                                           std::span<const int32_t> terms,
-                                                          double gc) const {
+                                                          double gc, const FieldBound& fb,
+                                                          double b) const {
     if (!field_.Motion()) return {gc, gc};
+    if (!(std::max(fb.valueMax - threshold_, threshold_ - fb.valueMin) > b * fb.L)) {
+        return {0, 0};
+    }
     double lo = gc, hi = gc;
     field_.ValueRangeAt(centre, terms, lo, hi);
     return {lo - threshold_, hi - threshold_};
@@ -398,19 +403,22 @@ LGOctree::Decision LGOctree::Decide(const Bounds3& box, int depth, LatticePoint 
     double b = HalfDiagonal(box);
     // The cell's edge in lattice steps (>= 2 down to maxDepth), and its centre's point.
     const uint32_t edge = 1u << (s.maxDepth + 1 - depth), half = edge / 2;
-    double gc = value(centre, LatticePoint{low.x + half, low.y + half, low.z + half}) - threshold_;
-    Decision mark = gc > 0 ? Decision::Full : Decision::Empty;
-    // A moving field's centre value varies within the shutter (field_motion.h): heuristic
-    // 1 then needs it beyond b·L at every time, from its range at the centre over time.
-    const auto [gcLo, gcHi] = CentreRangeOverShutter(centre, terms, gc);
-    if (field_.Motion()) mark = gcLo > 0 ? Decision::Full : Decision::Empty;
+    // A moving field's centre value varies within the shutter: heuristic 1 then needs its
+    // range there beyond b·L (so the cell's range must be; {0, 0} never fires), and no test
+    // uses it at one time (1bis off, 3 leaves anyway).
+    const bool moving = field_.Motion() != nullptr;
+    const double gc = moving ? 0 : value(centre, {low.x + half, low.y + half, low.z + half}) -
+                                       threshold_;
+    const auto [gcLo, gcHi] = CentreRangeOverShutter(centre, terms, gc, fb, b);
+    const Decision mark = (moving ? gcLo : gc) > 0 ? Decision::Full : Decision::Empty;
     if (s.useHeuristic1 && (gcLo > b * fb.L || gcHi < -b * fb.L)) {
         Count(c.h1Fired);
         return mark;
     }
     // 1bis needs |g(C)| > b‖∇F(C)‖ + ½b²G >= ½b²G: test that first, so the gradient is
     // evaluated only where the heuristic can fire.
-    if (s.useHeuristic1bis && std::isfinite(fb.G) && std::abs(gc) > 0.5 * b * b * fb.G) {
+    if (s.useHeuristic1bis && !moving && std::isfinite(fb.G) &&
+        std::abs(gc) > 0.5 * b * b * fb.G) {
         double grad = Length(field_.Gradient(centre, terms));
         if (std::abs(gc) > b * grad + 0.5 * b * b * fb.G) {
             Count(c.h1bisFired);
@@ -427,7 +435,6 @@ LGOctree::Decision LGOctree::Decide(const Bounds3& box, int depth, LatticePoint 
         if (s.useHeuristic3) {
             // A moving field's surface may cross the cell at some time of the shutter
             // whenever its range straddles T, as it does here: a leaf, as if it crossed.
-            const bool moving = field_.Motion() != nullptr;
             bool anyIn = gc > 0 || moving, anyOut = gc <= 0 || moving;
             for (int i = 0; i < 8 && !(anyIn && anyOut); ++i) {
                 LatticePoint q{low.x + ((i & 1) ? edge : 0), low.y + ((i & 2) ? edge : 0),

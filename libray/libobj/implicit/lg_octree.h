@@ -314,10 +314,11 @@ class LGOctree {
     // used in the .cpp only.
     enum class Decision { Empty, Full, Leaf, Subdivide };
     // g's range at a cell centre over the shutter, given g there now (gc): {gc, gc} unless
-    // the field moves (heuristic 1 of a moving field).
+    // the field moves (heuristic 1 of a moving field); {0, 0}, which never fires heuristic
+    // 1, when the cell's bounds `fb` (half diagonal b) show it cannot fire.
     std::pair<double, double> CentreRangeOverShutter(const Vec3& centre,
-                                                     std::span<const int32_t> terms,
-                                                     double gc) const;
+                                                     std::span<const int32_t> terms, double gc,
+                                                     const FieldBound& fb, double b) const;
     template <class Value>
     Decision Decide(const Bounds3& box, int depth, LatticePoint low,
                     std::span<const int32_t> terms, FieldBound& fb, Value&& value) const;

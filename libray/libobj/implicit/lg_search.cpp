@@ -151,10 +151,11 @@ class RaySearch {
             // because the leaf touches a point where F is not C² (a linear kernel's
             // skeleton, a circle's axis, a polyline's kink) or comes very close to one:
             // bound the segment's own box instead, which is finite once the segment avoids
-            // those points (research note §5's local bounds). Both bounds hold on [a, b];
-            // keep the smaller L and the segment's G.
+            // those points (research note §5's local bounds), at the ray's time for a moving
+            // field. Both bounds hold on [a, b]; keep the smaller L and the segment's G.
             Count(Counters().segmentBounds);
-            FieldBound local = tree_.GetField().Bound(Bounds3(ray_.At(a), ray_.At(b)));
+            const Bounds3 box(ray_.At(a), ray_.At(b));
+            const FieldBound local = tree_.GetField().BoundAtRayTime(box);
             lt = std::min(lt, local.L * dirLength_);
             gt = std::min(gt, local.G * dirLength_ * dirLength_);
         }

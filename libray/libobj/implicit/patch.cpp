@@ -45,11 +45,14 @@ Patch::Predominance Patch::PredominanceAt(const Vec3& p, double uncertainty) con
 }
 
 bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {
-    const FieldTerm& own = field_.Terms()[Own()];
+    // A moving skeleton: at the ray's time when one is set, else the reference one, which
+    // it stays within its reach of.
+    const bool now = field_.AtRayTime();
+    const FieldTerm& own = now ? field_.TermAt(Own()) : field_.Terms()[Own()];
     const double a = LengthSquared(ray.dir);
     if (!(a > 0)) return true;
-    // A moving skeleton stays within its reach of the reference one used here.
-    const double reach = own.kernel.Radius() * (1 + kSupportMargin) + field_.TermReach(Own());
+    const double reach =
+        own.kernel.Radius() * (1 + kSupportMargin) + (now ? 0 : field_.TermReach(Own()));
     // NaNs (overflow) fail every comparison below: true.
     if (const auto* point = std::get_if<PointSkeleton>(&own.skeleton)) {
         const Vec3 oc = ray.origin - point->center;

@@ -1,7 +1,7 @@
 // Swept bounds of a moving field (field_motion.h) against dense sampling over space and
 // time: random skeletons of every kind translated at random velocities during [0, 1]
-// (reference at 0.5, reach |v|/2: the exact Hausdorff distance of a translation), with
-// weights varying by ±15%. Every box function must hold at every sampled (point, time),
+// (reference at 0.5, reach |v|/2: the exact Hausdorff distance of a translation; a point's
+// centre box, the box of the segment it sweeps), with weights varying by ±15%. Every box function must hold at every sampled (point, time),
 // and point evaluations at a ray time must equal the static field of that time, bit for
 // bit.
 #include "libobj/implicit/field.h"
@@ -59,8 +59,16 @@ struct MovingSet {
         std::vector<TermMotion> motion(reference.size());
         for (size_t i = 0; i < reference.size(); ++i) {
             const double w = reference[i].weight;
-            motion[i] = {true, 0.5 * Length(velocity[i]), std::min(0.85 * w, 1.15 * w),
-                         std::max(0.85 * w, 1.15 * w)};
+            motion[i].moving = true;
+            motion[i].reach = 0.5 * Length(velocity[i]);
+            motion[i].weightLo = std::min(0.85 * w, 1.15 * w);
+            motion[i].weightHi = std::max(0.85 * w, 1.15 * w);
+            // A point's centre sweeps the segment c ± v/2: its box (field_motion.h).
+            if (const auto* point = std::get_if<PointSkeleton>(&reference[i].skeleton)) {
+                motion[i].centreBoxed = true;
+                motion[i].centres = Bounds3(point->center - velocity[i] * 0.5,
+                                            point->center + velocity[i] * 0.5);
+            }
         }
         auto at = [set = *this](int row, double t, FieldTerm& term) {
             const FieldTerm moved = set.At(t)[row];
@@ -105,6 +113,14 @@ TEST(FieldMotion, SweptBoundsHoldAtEverySampledPointAndTime) {
                 const RayTimeScope time(t);
                 const double v = moving.Value(p);
                 ASSERT_EQ(v, still.Value(p));  // the ray's time, bit for bit
+                if (s < 4) {
+                    // The bound at the ray's time is the static field's at that time.
+                    const FieldBound now = moving.BoundAtRayTime(box), st = still.Bound(box);
+                    EXPECT_EQ(now.valueMin, st.valueMin);
+                    EXPECT_EQ(now.valueMax, st.valueMax);
+                    EXPECT_EQ(now.L, st.L);
+                    EXPECT_EQ(now.G, st.G);
+                }
                 const double slack = 1e-9 * (1 + std::abs(v));
                 EXPECT_GE(v, fb.valueMin - slack);
                 EXPECT_LE(v, fb.valueMax + slack);
