@@ -187,16 +187,16 @@ constexpr std::array<bool, 256> kPlainCharacters = [] {
 bool IsPlain(char c) { return kPlainCharacters[static_cast<unsigned char>(c)]; }
 
 // What IsPlainText makes of a character: nothing to do, a letter or '_' (which may start an
-// identifier), or anything that needs the full preprocessor: '#', '/' (a comment may
-// start), quotes, backslashes, control characters other than tab, newline and return, DEL.
+// identifier), or anything that needs the full preprocessor: what IsPlainCharacter rejects
+// ('/' (a comment may start), quotes, backslashes, control characters other than tab,
+// newline and return, DEL) and '#'.
 enum class PlainClass : unsigned char { Plain, IdentifierStart, Special };
 constexpr std::array<PlainClass, 256> kPlainClasses = [] {
     std::array<PlainClass, 256> table{};
     for (int c = 0; c < 256; ++c) {
         const char ch = static_cast<char>(c);
-        const bool control = c < 0x20 && ch != '\t' && ch != '\n' && ch != '\r';
         table[c] = IsIdentifierStart(ch) ? PlainClass::IdentifierStart
-                   : control || c == 0x7f || ch == '#' || ch == '/' || ch == '"' || ch == '\'' || ch == '\\'
+                   : !IsPlainCharacter(static_cast<unsigned char>(c)) || ch == '#'
                        ? PlainClass::Special
                        : PlainClass::Plain;
     }

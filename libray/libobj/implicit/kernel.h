@@ -54,6 +54,8 @@ class Kernel {
     double Thickness() const { return thickness_; }
     double Stiffness() const { return stiffness_; }
     double Strength() const { return strength_; }
+    // The same kernel: kind and every parameter equal.
+    bool operator==(const Kernel&) const = default;
 
     // Checks the parameter conditions (0 < e < R, k > 0, k(R − e) <= 3; blob s > 0, R > 0).
     KernelStatus Validate(const std::string& skeletonName) const;

@@ -88,11 +88,6 @@ bool Patch::ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, doub
     const auto* point = std::get_if<PointSkeleton>(&own.skeleton);
     if (!point || field_.Motion() || field_.Deformation()) return true;
     const Kernel& kernel = own.kernel;
-    auto sameKernel = [&](const Kernel& k) {
-        return k.Kind() == kernel.Kind() && k.Radius() == kernel.Radius() &&
-               k.Thickness() == kernel.Thickness() && k.Stiffness() == kernel.Stiffness() &&
-               k.Strength() == kernel.Strength();
-    };
     // Distances are measured from p0 = o + t0·d, near the box, so the squares stay small.
     const double base = t0;
     const Vec3 p0 = ray.At(base);
@@ -109,7 +104,7 @@ bool Patch::ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, doub
     for (size_t k = 1; k < members.size(); ++k) {
         const FieldTerm& other = field_.Terms()[members[k]];
         const auto* rival = std::get_if<PointSkeleton>(&other.skeleton);
-        if (!rival || other.weight != own.weight || !sameKernel(other.kernel)) continue;
+        if (!rival || other.weight != own.weight || other.kernel != kernel) continue;
         // d_own(s)² − d_j(s)² = a·s + b along the ray: keep a·s + b <= slack.
         const double a = 2 * Dot(ray.dir, rival->center - point->center);
         const double b = ownSquared - LengthSquared(p0 - rival->center) - slack;
