@@ -58,6 +58,14 @@ DistanceRange MovingDistanceRange(const TermMotion& m, const Skeleton& reference
     return MovingDistanceRange(m, reference, Bounds3(p, p));
 }
 
+// [lo, hi] holding w·f(d) for w in [wLo, wHi] and d in r (f is monotone in d).
+void WeightedKernelRange(const Kernel& kernel, const DistanceRange& r, double wLo, double wHi,
+                         double& lo, double& hi) {
+    const double near = kernel.Value(r.min), far = kernel.Value(r.max);
+    lo = std::min({wLo * near, wLo * far, wHi * near, wHi * far});
+    hi = std::max({wLo * near, wLo * far, wHi * near, wHi * far});
+}
+
 }  // namespace
 
 Field::Field(std::vector<FieldTerm> terms, std::shared_ptr<const FieldMotion> motion) {
@@ -304,11 +312,11 @@ void Field::ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& 
         } else {
             r.min = r.max = SkeletonDistance(t.skeleton, p);
         }
-        const double near = t.kernel.Value(r.min), far = t.kernel.Value(r.max);
-        double wLo, wHi;
+        double wLo, wHi, termLo, termHi;
         WeightRange(i, wLo, wHi);
-        lo += std::min({wLo * near, wLo * far, wHi * near, wHi * far});
-        hi += std::max({wLo * near, wLo * far, wHi * near, wHi * far});
+        WeightedKernelRange(t.kernel, r, wLo, wHi, termLo, termHi);
+        lo += termLo;
+        hi += termHi;
     }
     if (deformation_) {
         const double v = deformation_->Value(p);
@@ -318,17 +326,22 @@ void Field::ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& 
 }
 
 void Field::TermRange(int i, const Bounds3& box, double& lo, double& hi) const {
-    const FieldTerm& t = table_->terms[i];
     if (!MayReach(table_->support[i], box)) {
         lo = hi = 0;
         return;
     }
-    const DistanceRange r = SweptDistanceRange(i, box);
     double wLo, wHi;
     WeightRange(i, wLo, wHi);
-    const double near = t.kernel.Value(r.min), far = t.kernel.Value(r.max);
-    lo = std::min({wLo * near, wLo * far, wHi * near, wHi * far});
-    hi = std::max({wLo * near, wLo * far, wHi * near, wHi * far});
+    WeightedKernelRange(table_->terms[i].kernel, SweptDistanceRange(i, box), wLo, wHi, lo, hi);
+}
+
+void Field::TermRangeAtRayTime(int i, const Bounds3& box, double& lo, double& hi) const {
+    TermsAtTime* now = table_->motion && table_->motion->Of(i).moving ? table_->motion->Now()
+                                                                      : nullptr;
+    if (!now || !MayReach(table_->support[i], box)) return TermRange(i, box, lo, hi);
+    const FieldTerm& t = now->Of(i, table_->terms[i]);
+    WeightedKernelRange(t.kernel, SkeletonDistanceRange(t.skeleton, box), t.weight, t.weight,
+                        lo, hi);
 }
 
 Bounds3 Field::SupportBounds() const {

@@ -172,6 +172,10 @@ class Field {
     void ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& lo, double& hi) const;
     // [lo, hi] containing w_i f_i(d_i(p)) for every p in the box (f is monotone in d), row i.
     void TermRange(int i, const Bounds3& box, double& lo, double& hi) const;
+    // TermRange of row i at the calling thread's ray time only (as BoundAtRayTime: the
+    // static field's TermRange at that time for a moving row with a ray time set, tighter
+    // than the swept one and valid only at that time); else TermRange.
+    void TermRangeAtRayTime(int i, const Bounds3& box, double& lo, double& hi) const;
 
     // The box outside of which every term of the field vanishes (skeleton boxes padded by R).
     Bounds3 SupportBounds() const;

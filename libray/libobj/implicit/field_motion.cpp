@@ -11,7 +11,17 @@ namespace rs {
 
 namespace {
 
-thread_local double tRayTime = std::numeric_limits<double>::quiet_NaN();
+// The calling thread's ray time, and what Now() answered last (a cache, or null with no
+// time set): still the answer while the same motion asks again with no change of time in
+// between (`changes` counts the RayTimeScope changes).
+struct ThreadRayTime {
+    double time = std::numeric_limits<double>::quiet_NaN();
+    uint64_t changes = 0;
+    uint64_t lastId = 0;  // 0: none (motion ids start at 1)
+    uint64_t lastChanges = 0;
+    TermsAtTime* last = nullptr;
+};
+thread_local ThreadRayTime tRayTime;
 
 // A few caches per thread (one per moving object a ray meets), least recently used first
 // to go: bounded memory, however many frames and objects come and go.
@@ -25,9 +35,16 @@ FieldMotion::FieldMotion(std::vector<TermMotion> terms, TermAt termAt)
     : terms_(std::move(terms)), termAt_(std::move(termAt)), id_(gNextMotionId++) {}
 
 TermsAtTime* FieldMotion::Now() const {
-    const double time = tRayTime;
+    ThreadRayTime& now = tRayTime;
+    if (now.lastId == id_ && now.lastChanges == now.changes) return now.last;
+    const double time = now.time;
+    now.lastId = id_;
+    now.lastChanges = now.changes;
+    now.last = nullptr;
     if (std::isnan(time)) return nullptr;
     thread_local std::vector<TermsAtTime> caches;
+    // Never reallocated (at most kCachesPerThread), so `now.last` stays valid.
+    if (caches.capacity() < kCachesPerThread) caches.reserve(kCachesPerThread);
     thread_local uint64_t clock = 0;
     thread_local size_t last = 0;  // the cache found last time: most lookups ask it again
     TermsAtTime* found = last < caches.size() && caches[last].id_ == id_ ? &caches[last] : nullptr;
@@ -56,6 +73,7 @@ TermsAtTime* FieldMotion::Now() const {
         found->time_ = time;
         ++found->epoch_;
     }
+    now.last = found;
     return found;
 }
 
@@ -74,7 +92,13 @@ const FieldTerm& FieldMotion::Resolve(int row, const FieldTerm& reference) const
     return now ? now->Of(row, reference) : reference;
 }
 
-RayTimeScope::RayTimeScope(double time) : previous_(tRayTime) { tRayTime = time; }
-RayTimeScope::~RayTimeScope() { tRayTime = previous_; }
+RayTimeScope::RayTimeScope(double time) : previous_(tRayTime.time) {
+    tRayTime.time = time;
+    ++tRayTime.changes;
+}
+RayTimeScope::~RayTimeScope() {
+    tRayTime.time = previous_;
+    ++tRayTime.changes;
+}
 
 }  // namespace rs

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <utility>
+#include <variant>
 
 #include "libcommon/error.h"
 #include "libobj/implicit/implicit_block.h"
@@ -176,11 +178,32 @@ MovingTerms BuildMovingTerms(const std::shared_ptr<const ImplicitDescription>& b
         }
     }
     // A moving term at a ray time: its skeleton and weight (the kernel does not move).
-    // The interval checks above keep MakeSkeletonAt from failing inside [t0, t1].
-    auto termAt = [block](int row, double time, FieldTerm& term) {
+    // The interval checks above keep MakeSkeletonAt from failing inside [t0, t1]. `term`
+    // starts as the reference term, whose static numbers are those of every time: a point
+    // (the commonest moving skeleton) and the weight get only their animated numbers anew.
+    std::vector<uint8_t> animated(d.skeletons.size(), 0);  // bits 0–2 a point's coordinates, 3 the weight
+    for (size_t i = 0; i < d.skeletons.size(); ++i) {
+        const SkeletonSpec& e = d.skeletons[i];
+        if (e.kind == SkeletonKind::Point) {
+            for (size_t c = 0; c < 3; ++c) {
+                if (d.numbers.IsAnimated(e.firstNumber + c)) animated[i] |= 1u << c;
+            }
+        }
+        if (d.numbers.IsAnimated(e.weight)) animated[i] |= 8;
+    }
+    auto termAt = [block, animated = std::move(animated)](int row, double time, FieldTerm& term) {
         const ImplicitDescription& b = *block;
-        MakeSkeletonAt(b, static_cast<size_t>(row), time, term.skeleton);
-        term.weight = b.numbers.At(b.skeletons[row].weight, time);
+        const SkeletonSpec& e = b.skeletons[row];
+        const unsigned changes = animated[row];
+        if (e.kind == SkeletonKind::Point) {
+            Vec3& centre = std::get<PointSkeleton>(term.skeleton).center;
+            for (int c = 0; c < 3; ++c) {
+                if ((changes >> c) & 1) centre[c] = b.numbers.At(e.firstNumber + c, time);
+            }
+        } else {
+            MakeSkeletonAt(b, static_cast<size_t>(row), time, term.skeleton);
+        }
+        if (changes & 8) term.weight = b.numbers.At(e.weight, time);
     };
     out.motion = std::make_shared<const FieldMotion>(std::move(motions), std::move(termAt));
     out.reference = std::move(reference);

@@ -284,12 +284,12 @@ bool LGOctree::OwnMayPredominate(std::span<const int32_t> terms,
 bool LGOctree::OwnExcluded(const Bounds3& box, std::span<const int32_t> terms) const {
     if (ownTerm_ < 0 || !settings_.usePredominancePruning) return false;
     double ownLo, ownHi;
-    field_.TermRange(ownTerm_, box, ownLo, ownHi);
+    field_.TermRangeAtRayTime(ownTerm_, box, ownLo, ownHi);
     const double limit = ownHi + kExclusionMargin * std::abs(ownHi);
     for (const int j : terms) {
         if (j == ownTerm_) continue;
         double lo, hi;
-        field_.TermRange(j, box, lo, hi);
+        field_.TermRangeAtRayTime(j, box, lo, hi);
         if (lo - kExclusionMargin * std::abs(lo) > limit) return true;
     }
     return false;

@@ -45,14 +45,19 @@ Patch::Predominance Patch::PredominanceAt(const Vec3& p, double uncertainty) con
 }
 
 bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {
-    // A moving skeleton: at the ray's time when one is set, else the reference one, which
-    // it stays within its reach of.
-    const bool now = field_.AtRayTime();
-    const FieldTerm& own = now ? field_.TermAt(Own()) : field_.Terms()[Own()];
+    // A moving skeleton stays within its reach of the reference one: that test first (no
+    // term to make), then, for the patches passing it, at the ray's time when one is set.
+    const double moved = field_.TermReach(Own());
+    if (!MayMeetSupport(field_.Terms()[Own()], moved, ray, tMin, tMax)) return false;
+    if (moved == 0 || !field_.AtRayTime()) return true;
+    return MayMeetSupport(field_.TermAt(Own()), 0, ray, tMin, tMax);
+}
+
+bool Patch::MayMeetSupport(const FieldTerm& own, double moved, const Ray& ray, double tMin,
+                           double tMax) {
     const double a = LengthSquared(ray.dir);
     if (!(a > 0)) return true;
-    const double reach =
-        own.kernel.Radius() * (1 + kSupportMargin) + (now ? 0 : field_.TermReach(Own()));
+    const double reach = own.kernel.Radius() * (1 + kSupportMargin) + moved;
     // NaNs (overflow) fail every comparison below: true.
     if (const auto* point = std::get_if<PointSkeleton>(&own.skeleton)) {
         const Vec3 oc = ray.origin - point->center;

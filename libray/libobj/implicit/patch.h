@@ -105,6 +105,10 @@ class Patch {
     }
 
   private:
+    // MayHoldRoot's test for the skeleton of `own` with its support radius grown by `moved`.
+    static bool MayMeetSupport(const FieldTerm& own, double moved, const Ray& ray, double tMin,
+                               double tMax);
+
     Field field_;
     Bounds3 box_;
 };

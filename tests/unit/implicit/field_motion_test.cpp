@@ -120,6 +120,14 @@ TEST(FieldMotion, SweptBoundsHoldAtEverySampledPointAndTime) {
                     EXPECT_EQ(now.valueMax, st.valueMax);
                     EXPECT_EQ(now.L, st.L);
                     EXPECT_EQ(now.G, st.G);
+                    // Likewise each term's range (the predominance exclusion of the search).
+                    for (int i = 0; i < moving.Size(); ++i) {
+                        double lo, hi, stLo, stHi;
+                        moving.TermRangeAtRayTime(i, box, lo, hi);
+                        still.TermRange(i, box, stLo, stHi);
+                        EXPECT_EQ(lo, stLo);
+                        EXPECT_EQ(hi, stHi);
+                    }
                 }
                 const double slack = 1e-9 * (1 + std::abs(v));
                 EXPECT_GE(v, fb.valueMin - slack);
