@@ -88,10 +88,7 @@ Field::Field(std::vector<FieldTerm> terms, std::shared_ptr<const FieldMotion> mo
 }
 
 Field Field::Subset(std::vector<int> rows) const {
-    Field out;
-    out.table_ = table_;
-    out.rows_ = std::move(rows);
-    return out;
+    return Field(table_, std::move(rows));
 }
 
 DistanceRange Field::SweptDistanceRange(int i, const Bounds3& box) const {

@@ -32,6 +32,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libcommon/stats.h"
@@ -186,6 +187,9 @@ class Field {
         std::vector<Bounds3> support;  // TermSupportBounds of each term, padded by its reach
         std::shared_ptr<const FieldMotion> motion;
     };
+    // Subset's field: rows of a shared table (no table of its own is made).
+    Field(std::shared_ptr<const TermTable> table, std::vector<int> rows)
+        : table_(std::move(table)), rows_(std::move(rows)) {}
     // Row i's distance range over the box at every time, and its weight interval.
     DistanceRange SweptDistanceRange(int i, const Bounds3& box) const;
     void WeightRange(int i, double& lo, double& hi) const;

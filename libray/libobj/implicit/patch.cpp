@@ -127,33 +127,41 @@ bool Patch::ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, doub
     return t0 <= t1;
 }
 
-namespace {
-
 // The automatic neighbour candidates of every term: a uniform grid of cell edge W per axis,
 // W the largest support extent along that axis, each support box filed under the cell of
 // its low corner. Two boxes overlap only if their low corners differ by at most W per axis,
 // i.e. their cells are equal or adjacent, so the 27 cells around a box's own hold every box
 // it may overlap: O(n·k) for k boxes per cell neighbourhood instead of all n² pairs. The
 // occupied cells are found through an open-addressing hash of their coordinates.
-class NeighbourGrid {
+class AutomaticNeighbours::Grid {
   public:
-    explicit NeighbourGrid(const std::vector<Bounds3>& support) {
+    explicit Grid(const Field& object) {
+        const int n = static_cast<int>(object.Terms().size());
         const double inf = std::numeric_limits<double>::infinity();
         origin_ = {inf, inf, inf};
-        for (const Bounds3& b : support) {
+        for (int i = 0; i < n; ++i) {
+            const Bounds3& b = object.TermSupport(i);
             if (b.IsEmpty()) continue;
             width_ = Max(width_, b.hi - b.lo);
             origin_ = Min(origin_, b.lo);
         }
         std::vector<std::pair<Cell, int>> filed;
-        filed.reserve(support.size());
-        for (size_t i = 0; i < support.size(); ++i) {
-            if (!support[i].IsEmpty()) filed.emplace_back(CellOf(support[i].lo), static_cast<int>(i));
+        filed.reserve(n);
+        for (int i = 0; i < n; ++i) {
+            const Bounds3& b = object.TermSupport(i);
+            if (!b.IsEmpty()) filed.emplace_back(CellOf(b.lo), i);
         }
-        std::sort(filed.begin(), filed.end());
+        // By cell, then term (coordinates compared one by one: std::array's operators call
+        // memcmp, which showed in profiles at a million terms).
+        std::sort(filed.begin(), filed.end(), [](const auto& a, const auto& b) {
+            for (int k = 0; k < 3; ++k) {
+                if (a.first[k] != b.first[k]) return a.first[k] < b.first[k];
+            }
+            return a.second < b.second;
+        });
         members_.reserve(filed.size());
         for (size_t k = 0; k < filed.size(); ++k) {
-            if (k == 0 || filed[k].first != filed[k - 1].first) {
+            if (k == 0 || !SameCell(filed[k].first, filed[k - 1].first)) {
                 ranges_.push_back({filed[k].first, static_cast<int>(k), 0});
             }
             members_.push_back(filed[k].second);
@@ -206,6 +214,9 @@ class NeighbourGrid {
         }
         return c;
     }
+    static bool SameCell(const Cell& a, const Cell& b) {
+        return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+    }
     static size_t Hash(const Cell& c) {
         uint64_t h = 0x9e3779b97f4a7c15ull;
         for (long long v : c) {
@@ -218,7 +229,7 @@ class NeighbourGrid {
         for (size_t slot = Hash(c) & (slots_.size() - 1);; slot = (slot + 1) & (slots_.size() - 1)) {
             const int r = slots_[slot];
             if (r < 0) return nullptr;
-            if (ranges_[r].cell == c) return &ranges_[r];
+            if (SameCell(ranges_[r].cell, c)) return &ranges_[r];
         }
     }
 
@@ -227,6 +238,8 @@ class NeighbourGrid {
     std::vector<Range> ranges_;
     std::vector<int> slots_;  // indices into ranges_, −1 empty; at most half full
 };
+
+namespace {
 
 // Symmetric pairs as a sorted list of (low, high), for binary search.
 std::vector<std::pair<int, int>> SortedPairs(const std::vector<std::pair<int, int>>& pairs) {
@@ -237,58 +250,73 @@ std::vector<std::pair<int, int>> SortedPairs(const std::vector<std::pair<int, in
     return sorted;
 }
 
+// Term i's patch members: i, then every candidate (each visited by forEachCandidate, in any
+// order, repeats allowed) whose support box overlaps i's and that is not paired with i in
+// `separate` (sorted), in increasing term order (the order of the patch field's sum), once.
+template <class ForEachCandidate>
+std::vector<int> CollectMembers(const Field& object, int i,
+                                const std::vector<std::pair<int, int>>& separate,
+                                ForEachCandidate&& forEachCandidate) {
+    thread_local std::vector<int> near;  // reused: one allocation per list, its own
+    near.clear();
+    const Bounds3& own = object.TermSupport(i);
+    forEachCandidate([&](int j) {
+        if (j != i && BoxesOverlap(own, object.TermSupport(j)) &&
+            !std::binary_search(separate.begin(), separate.end(),
+                                std::pair<int, int>(std::min(i, j), std::max(i, j)))) {
+            near.push_back(j);
+        }
+    });
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    std::vector<int> members;
+    members.reserve(near.size() + 1);
+    members.push_back(i);
+    members.insert(members.end(), near.begin(), near.end());
+    return members;
+}
+
 }  // namespace
+
+AutomaticNeighbours::AutomaticNeighbours(const Field& object)
+    : object_(object), grid_(std::make_unique<const Grid>(object)) {}
+
+AutomaticNeighbours::~AutomaticNeighbours() = default;
+
+std::vector<int> AutomaticNeighbours::Members(
+    int i, const std::vector<std::pair<int, int>>& separate) const {
+    return CollectMembers(object_, i, separate, [&](auto&& visit) {
+        const Bounds3& own = object_.TermSupport(i);
+        if (!own.IsEmpty()) grid_->ForEachNear(own.lo, visit);
+    });
+}
 
 std::vector<Patch> BuildPatches(const Field& object, BlendMode mode,
                                 const std::vector<std::pair<int, int>>& blendPairs,
                                 const std::vector<std::pair<int, int>>& separatePairs) {
     const std::vector<FieldTerm>& terms = object.Terms();
     const int n = static_cast<int>(terms.size());
-    std::vector<Bounds3> support(n);
-    for (int i = 0; i < n; ++i) support[i] = object.TermSupport(i);
-    // Explicit mode: the declared partners of each term; automatic: the grid above.
-    std::vector<std::vector<int>> declared;
-    std::optional<NeighbourGrid> grid;
-    if (mode == BlendMode::Explicit) {
-        declared.resize(n);
-        for (auto [a, b] : blendPairs) {
-            if (a < 0 || b < 0 || a >= n || b >= n || a == b) continue;
-            declared[a].push_back(b);
-            declared[b].push_back(a);
-        }
-    } else {
-        grid.emplace(support);
-    }
     const std::vector<std::pair<int, int>> separate = SortedPairs(separatePairs);
-    auto keep = [&](int i, int j) {
-        return j != i && BoxesOverlap(support[i], support[j]) &&
-               !std::binary_search(separate.begin(), separate.end(),
-                                   std::pair<int, int>(std::min(i, j), std::max(i, j)));
-    };
     std::vector<Patch> patches;
-    std::vector<int> near;
+    if (mode == BlendMode::Automatic) {
+        const AutomaticNeighbours neighbours(object);
+        for (int i = 0; i < n; ++i) {
+            if (terms[i].weight > 0) patches.emplace_back(object, neighbours.Members(i, separate));
+        }
+        return patches;
+    }
+    // Explicit mode: the declared partners of each term.
+    std::vector<std::vector<int>> declared(n);
+    for (auto [a, b] : blendPairs) {
+        if (a < 0 || b < 0 || a >= n || b >= n || a == b) continue;
+        declared[a].push_back(b);
+        declared[b].push_back(a);
+    }
     for (int i = 0; i < n; ++i) {
         if (!(terms[i].weight > 0)) continue;
-        near.clear();
-        if (grid) {
-            if (!support[i].IsEmpty()) {
-                grid->ForEachNear(support[i].lo, [&](int j) {
-                    if (keep(i, j)) near.push_back(j);
-                });
-            }
-        } else {
-            for (int j : declared[i]) {
-                if (keep(i, j)) near.push_back(j);
-            }
-        }
-        // Neighbours in increasing term order (the order of the patch field's sum), once.
-        std::sort(near.begin(), near.end());
-        near.erase(std::unique(near.begin(), near.end()), near.end());
-        std::vector<int> members;
-        members.reserve(near.size() + 1);
-        members.push_back(i);
-        members.insert(members.end(), near.begin(), near.end());
-        patches.emplace_back(object, std::move(members));
+        patches.emplace_back(object, CollectMembers(object, i, separate, [&](auto&& visit) {
+                                 for (int j : declared[i]) visit(j);
+                             }));
     }
     return patches;
 }

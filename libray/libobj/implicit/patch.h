@@ -115,6 +115,26 @@ class Patch {
 
 enum class BlendMode { Automatic, Explicit };
 
+// The automatic neighbour lists of an object's terms, made one patch at a time: Members(i)
+// is the member list BuildPatches gives term i's patch in Automatic mode (i, then every
+// other term whose support box overlaps i's and that is not paired with i in `separate`,
+// in increasing order). The index (a uniform grid of the support boxes, see the .cpp) is
+// made once; Members is const and may be called from any thread. `object` must outlive it.
+class AutomaticNeighbours {
+  public:
+    explicit AutomaticNeighbours(const Field& object);
+    ~AutomaticNeighbours();
+    AutomaticNeighbours(const AutomaticNeighbours&) = delete;
+    AutomaticNeighbours& operator=(const AutomaticNeighbours&) = delete;
+    // `separate`: symmetric pairs as sorted (low, high) pairs (empty: none).
+    std::vector<int> Members(int i, const std::vector<std::pair<int, int>>& separate = {}) const;
+
+  private:
+    class Grid;
+    const Field& object_;
+    std::unique_ptr<const Grid> grid_;
+};
+
 // Builds one patch per positive-weight term of `object` (a field made from the object's
 // terms, whose table the patches share). In Explicit mode `blendPairs` lists the term
 // index pairs that blend (symmetric; others are ignored); in Automatic mode it is unused.

@@ -47,9 +47,24 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
     : threshold_(options.threshold),
       settings_(options.search, options.octree),
       autoDepth_(options.autoDepth),
-      stats_(stats) {
-    patches_ = BuildPatches(whole, options.blendMode, options.blendPairs,
-                            SeparatePairs(options.contacts));
+      stats_(stats),
+      whole_(whole) {
+    const std::vector<FieldTerm>& terms = whole.Terms();
+    const std::size_t positive = static_cast<std::size_t>(std::count_if(
+        terms.begin(), terms.end(), [](const FieldTerm& t) { return t.weight > 0; }));
+    if (options.blendMode == BlendMode::Automatic && options.contacts.empty() &&
+        !options.autoContacts && positive > kPerCellMinPatches) {
+        // Per-cell trees and automatic neighbours: the neighbour lists wait for FullPatch.
+        neighbours_ = std::make_unique<AutomaticNeighbours>(whole);
+        patches_.reserve(positive);
+        for (int i = 0; i < static_cast<int>(terms.size()); ++i) {
+            if (terms[i].weight > 0) patches_.emplace_back(whole, std::vector<int>{i});
+        }
+        lazyPatches_ = std::make_unique<LazyPatch[]>(positive);
+    } else {
+        patches_ = BuildPatches(whole, options.blendMode, options.blendPairs,
+                                SeparatePairs(options.contacts));
+    }
     patchOfTerm_.assign(whole.Terms().size(), -1);
     for (size_t i = 0; i < patches_.size(); ++i) {
         patchOfTerm_[patches_[i].Own()] = static_cast<int>(i);
@@ -102,11 +117,22 @@ OctreeSettings PatchesMethod::PatchSettings(const Patch& patch) const {
     return settings;
 }
 
+const Patch& PatchesMethod::FullPatch(int i) const {
+    if (!lazyPatches_) return patches_[i];
+    LazyPatch& lazy = lazyPatches_[i];
+    std::call_once(lazy.once, [&] {
+        const uint64_t cpuStart = ThreadCpuMicroseconds();
+        lazy.patch = std::make_unique<const Patch>(whole_, neighbours_->Members(patches_[i].Own()));
+        stats_.CountPreprocessing(ThreadCpuMicroseconds() - cpuStart);
+    });
+    return *lazy.patch;
+}
+
 const LGOctree& PatchesMethod::Tree(int i) const {
     return trees_[i].Get([this, i] {
-        return stats_.BuildTree([this, i] {
-            return BuildPatchOctree(patches_[i], threshold_, PatchSettings(patches_[i]),
-                                    cellStore_.get());
+        const Patch& patch = FullPatch(i);  // before BuildTree: its time is counted apart
+        return stats_.BuildTree([this, &patch] {
+            return BuildPatchOctree(patch, threshold_, PatchSettings(patch), cellStore_.get());
         });
     });
 }
@@ -137,10 +163,10 @@ std::optional<MethodHit> PatchesMethod::Intersect(const Ray& ray, double tMin,
         // predominate (Patch::ClipToOwnRegion): at the fluids' density a ray crosses a
         // few patches' balls for each patch it may hit in.
         double t0 = tMin, t1 = best;
-        if (cellStore_ && !patches_[patch].ClipToOwnRegion(ray, SeamUncertainty(ray), t0, t1)) {
+        if (cellStore_ && !FullPatch(patch).ClipToOwnRegion(ray, SeamUncertainty(ray), t0, t1)) {
             return false;
         }
-        std::optional<double> t = PatchFirstRoot(patches_[patch], Tree(patch), ray, t0, t1);
+        std::optional<double> t = PatchFirstRoot(FullPatch(patch), Tree(patch), ray, t0, t1);
         if (!t) return false;
         best = *t;
         bestPatch = patch;
@@ -153,7 +179,7 @@ std::optional<MethodHit> PatchesMethod::Intersect(const Ray& ray, double tMin,
 Vec3 PatchesMethod::Normal(const Field& whole, const Vec3& p, int term) const {
     const int patch = PatchOf(term);
     if (patch < 0) return IntersectionMethod::Normal(whole, p, term);
-    const Field& field = patches_[patch].GetField();
+    const Field& field = FullPatch(patch).GetField();
     const Vec3 n = Normalize(-field.Gradient(p));
     return LengthSquared(n) != 0 ? n : AwayFromSkeleton(field, patches_[patch].Own(), p);
 }

@@ -81,7 +81,9 @@ TEST(Patch, AutomaticNeighboursMatchAllPairsOnRandomTerms) {
         if (i % 5 == 0) t.skeleton = SegmentSkeleton{a, a + Vec3{coord(rng), 0, 1} * 0.5};
         terms.push_back(t);
     }
-    std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
+    const Field field(terms);
+    std::vector<Patch> patches = BuildPatches(field, BlendMode::Automatic);
+    const AutomaticNeighbours lazy(field);  // the lists one patch at a time, as PatchesMethod
     size_t next = 0;
     for (int i = 0; i < static_cast<int>(terms.size()); ++i) {
         if (!(terms[i].weight > 0)) continue;
@@ -96,6 +98,7 @@ TEST(Patch, AutomaticNeighboursMatchAllPairsOnRandomTerms) {
             if (j != i && overlap) expected.push_back(j);
         }
         EXPECT_EQ(patches[next++].Members(), expected) << "term " << i;
+        EXPECT_EQ(lazy.Members(i), expected) << "term " << i;
     }
     EXPECT_EQ(next, patches.size());
 }
