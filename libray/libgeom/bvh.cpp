@@ -18,18 +18,35 @@ double HalfArea(const Bounds3& b) {
 
 void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split split) {
     nodes_.clear();
+    wide_.clear();
+    expectedCost_ = 0;
     items_.resize(boxes.size());
     for (size_t i = 0; i < boxes.size(); ++i) items_[i] = static_cast<int>(i);
     if (boxes.empty()) return;
     nodes_.reserve(2 * boxes.size());
     // The centres in an array of their own: every level of the build reads them.
-    BuildInput input{boxes, {}};
+    BuildInput input{boxes, {}, {}, {}, {}};
     input.centres.reserve(boxes.size());
     for (const Bounds3& b : boxes) input.centres.push_back(b.Center());
+    if (split == Split::SurfaceArea) {
+        const auto toFloat4 = [](const Vec3& v) {
+            return Float4{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), 0};
+        };
+        input.binLo.reserve(boxes.size());
+        input.binHi.reserve(boxes.size());
+        input.binCentre.reserve(boxes.size());
+        for (size_t i = 0; i < boxes.size(); ++i) {
+            input.binLo.push_back(toFloat4(boxes[i].lo));
+            input.binHi.push_back(toFloat4(boxes[i].hi));
+            input.binCentre.push_back(toFloat4(input.centres[i]));
+        }
+    }
     BuildNode(items_, 0, static_cast<int>(items_.size()), input, split, 0);
     wide_.reserve(nodes_.size() / 2 + 1);
     BuildWide(0);
     const Bounds3& root = nodes_[0].box;
+    // A root of zero area leaves every term 0 (see ExpectedCost).
+    if (const double rootArea = HalfArea(root); rootArea > 0) expectedCost_ /= rootArea;
     scale_ = std::max({std::fabs(FloatBelow(root.lo.x)), std::fabs(FloatBelow(root.lo.y)),
                        std::fabs(FloatBelow(root.lo.z)), std::fabs(FloatAbove(root.hi.x)),
                        std::fabs(FloatAbove(root.hi.y)), std::fabs(FloatAbove(root.hi.z))});
@@ -63,6 +80,7 @@ int BoundingVolumeHierarchy::BuildWide(int node) {
     }
     const int index = static_cast<int>(wide_.size());
     wide_.emplace_back();
+    expectedCost_ += HalfArea(nodes_[node].box);
     for (int k = 0; k < 4; ++k) {
         int child = 0, count = 0;
         Bounds3 box;  // empty for unused lanes
@@ -72,6 +90,7 @@ int BoundingVolumeHierarchy::BuildWide(int node) {
             if (lane.count > 0) {
                 child = lane.first;
                 count = lane.count;
+                expectedCost_ += HalfArea(lane.box) * count;
             } else {
                 child = BuildWide(lanes[k]);  // may move wide_: index, not a reference
             }
@@ -111,51 +130,74 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
                                           const BuildInput& input, const Bounds3& box,
                                           const Bounds3& centroids, int& axis) {
     constexpr int kBins = 16;
+    typedef int Int4 __attribute__((vector_size(16)));
     const int count = end - begin;
     // Costs in units of one item test, a box test of a child counted as one as well:
     // splitting costs 1 + (A_left·N_left + A_right·N_right) / A; a leaf costs N.
     double bestCost = count;
     int bestAxis = -1, bestBin = 0;
     const double area = HalfArea(box);
-    const Vec3 cLo = centroids.lo, cExtent = centroids.Extent();
-    const Vec3 binsPerUnit{kBins / cExtent.x, kBins / cExtent.y, kBins / cExtent.z};
-    const auto binOf = [&](const Vec3& centre, int a) {
-        const int b = static_cast<int>((centre[a] - cLo[a]) * binsPerUnit[a]);
-        return b < 0 ? 0 : (b >= kBins ? kBins - 1 : b);
+    const Vec3 cExtent = centroids.Extent();
+    // The three axes' bins of a centre at once, in single precision (an axis whose centres
+    // all coincide is binned into bin 0 and not split).
+    const Float4 cLo{static_cast<float>(centroids.lo.x), static_cast<float>(centroids.lo.y),
+                     static_cast<float>(centroids.lo.z), 0};
+    Float4 binsPerUnit{};
+    for (int a = 0; a < 3; ++a)
+        if (cExtent[a] > 0) binsPerUnit[a] = static_cast<float>(kBins / cExtent[a]);
+    const auto binsOf = [&](int item) {
+        const Float4 rel = (input.binCentre[item] - cLo) * binsPerUnit;
+        const Int4 b = __builtin_convertvector(rel > 0 ? rel : Float4{}, Int4);
+        return b < kBins - 1 ? b : Int4{} + (kBins - 1);
     };
     // One pass over the items fills the bins of all three axes (each box read once).
-    Bounds3 bins[3][kBins];
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    Float4 binLo[3][kBins], binHi[3][kBins];
     int counts[3][kBins] = {};
-    for (int i = begin; i < end; ++i) {
-        const Bounds3& itemBox = input.boxes[items[i]];
-        const Vec3& centre = input.centres[items[i]];
-        for (int a = 0; a < 3; ++a) {
-            if (!(cExtent[a] > 0)) continue;
-            const int b = binOf(centre, a);
-            ++counts[a][b];
-            bins[a][b].Extend(itemBox);
+    for (int a = 0; a < 3; ++a) {
+        for (int k = 0; k < kBins; ++k) {
+            binLo[a][k] = Float4{} + kInf;
+            binHi[a][k] = Float4{} - kInf;
         }
     }
+    for (int i = begin; i < end; ++i) {
+        const int item = items[i];
+        const Float4 lo = input.binLo[item], hi = input.binHi[item];
+        const Int4 b = binsOf(item);
+        for (int a = 0; a < 3; ++a) {
+            ++counts[a][b[a]];
+            Float4& bl = binLo[a][b[a]];
+            Float4& bh = binHi[a][b[a]];
+            bl = lo < bl ? lo : bl;
+            bh = hi > bh ? hi : bh;
+        }
+    }
+    // Half the area of a bin union, 0 when empty.
+    const auto halfArea = [](const Float4& lo, const Float4& hi) {
+        const Float4 e = hi - lo;
+        return e[0] >= 0 ? static_cast<double>(e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) : 0.0;
+    };
     for (int a = 0; a < 3; ++a) {
         if (!(cExtent[a] > 0)) continue;
-        const Bounds3* binBox = bins[a];
-        const int* binCount = counts[a];
         // rightCost[k]: A·N of bins k.. (the right part when splitting before bin k).
         double rightCost[kBins];
-        Bounds3 acc;
+        Float4 accLo = Float4{} + kInf, accHi = Float4{} - kInf;
         int n = 0;
         for (int k = kBins - 1; k > 0; --k) {
-            acc.Extend(binBox[k]);
-            n += binCount[k];
-            rightCost[k] = HalfArea(acc) * n;
+            accLo = binLo[a][k] < accLo ? binLo[a][k] : accLo;
+            accHi = binHi[a][k] > accHi ? binHi[a][k] : accHi;
+            n += counts[a][k];
+            rightCost[k] = n > 0 ? halfArea(accLo, accHi) * n : 0;
         }
-        acc = Bounds3{};
+        accLo = Float4{} + kInf;
+        accHi = Float4{} - kInf;
         n = 0;
         for (int k = 1; k < kBins; ++k) {
-            acc.Extend(binBox[k - 1]);
-            n += binCount[k - 1];
+            accLo = binLo[a][k - 1] < accLo ? binLo[a][k - 1] : accLo;
+            accHi = binHi[a][k - 1] > accHi ? binHi[a][k - 1] : accHi;
+            n += counts[a][k - 1];
             if (n == 0 || n == count) continue;
-            const double cost = 1 + (HalfArea(acc) * n + rightCost[k]) / area;
+            const double cost = 1 + (halfArea(accLo, accHi) * n + rightCost[k]) / area;
             if (cost < bestCost) {
                 bestCost = cost;
                 bestAxis = a;
@@ -167,7 +209,7 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     axis = bestAxis;
     const auto middle =
         std::partition(items.begin() + begin, items.begin() + end,
-                       [&](int item) { return binOf(input.centres[item], bestAxis) < bestBin; });
+                       [&](int item) { return binsOf(item)[bestAxis] < bestBin; });
     return static_cast<int>(middle - items.begin());
 }
 

@@ -28,6 +28,12 @@ class BoundingVolumeHierarchy {
     // Builds over `boxes` (item i has box boxes[i]).
     void Build(const std::vector<Bounds3>& boxes, Split split = Split::Median);
     bool IsEmpty() const { return nodes_.empty(); }
+    // The surface-area estimate of the wide walk's work for a ray through the root box, in
+    // units of one item visit: each wide node counts one (its four-box test), each leaf lane
+    // its item count, both weighted by the chance that a random ray meeting the root box
+    // meets theirs (area over the root's area). No segment shortening is assumed. 0 when
+    // empty or when the root box has no area.
+    double ExpectedCost() const { return expectedCost_; }
 
     // Calls visit(i) once for every item whose box meets the ray segment (tMin, tMax), nearer
     // boxes first (items sharing a leaf with such an item may be visited too: item boxes
@@ -206,10 +212,13 @@ class BoundingVolumeHierarchy {
         int axis = 0;
     };
 
-    // The items' boxes and their centres, by item.
+    // The items' boxes and their centres, by item; for the SAH's binning also both in single
+    // precision, (x, y, z, 0) in one vector each (the bins' boxes and the centres' bins are
+    // estimates; node boxes are computed from the doubles).
     struct BuildInput {
         const std::vector<Bounds3>& boxes;
         std::vector<Vec3> centres;
+        std::vector<Float4> binLo, binHi, binCentre;
     };
     int BuildNode(std::vector<int>& items, int begin, int end, const BuildInput& input,
                   Split split, int depth);
@@ -223,12 +232,14 @@ class BoundingVolumeHierarchy {
 
     // Appends the wide node whose lanes are binary node `node`'s descendants two levels
     // down at most (the larger-area interior lane split first, until four), recursively;
-    // returns its index. Wide depth <= binary depth < 64.
+    // returns its index. Adds the node's and its leaf lanes' terms, unscaled, to
+    // expectedCost_. Wide depth <= binary depth < 64.
     int BuildWide(int node);
 
     std::vector<Node> nodes_;  // the binary tree (VisitContaining, and the source of wide_)
     std::vector<WideNode> wide_;
     double scale_ = 0;  // the largest coordinate magnitude of the wide boxes
+    double expectedCost_ = 0;
     std::vector<int> items_;
 };
 

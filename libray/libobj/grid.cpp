@@ -46,8 +46,8 @@ const CounterId kBoundsTests = RegisterCounter("bounding box tests");
 
 }  // namespace
 
-GridAggregate::GridAggregate(int nx, int ny, int nz)
-    : n_{std::max(nx, 1), std::max(ny, 1), std::max(nz, 1)} {}
+GridAggregate::GridAggregate(int nx, int ny, int nz, Search search)
+    : n_{std::max(nx, 1), std::max(ny, 1), std::max(nz, 1)}, search_(search) {}
 
 int GridAggregate::VoxelOf(double x, int axis) const {
     const double f = std::floor((x - gridBox_.lo[axis]) / voxelSize_[axis]);
@@ -61,6 +61,9 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     childBoxes_.clear();
     cellStart_.clear();
     cellItems_.clear();
+    emptyRun_.clear();
+    hierarchy_ = ChildHierarchy{};
+    searchesVoxels_ = true;
     bounds_ = Bounds3{};
     for (const auto& child : children_) {
         if (child->IsBounded()) {
@@ -71,10 +74,6 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
         }
     }
     if (bounded_.empty()) return;
-    if (bounded_.size() > slotCount_) {
-        slotCount_ = bounded_.size();
-        firstSlot_ = gSlotsAllocated.fetch_add(slotCount_, std::memory_order_relaxed);
-    }
     // The children's boxes padded by kEpsilon: the registered boxes (a hit on a voxel face
     // stays registered on both sides despite round-off in the DDA, and flat boxes, e.g. of
     // polygons, get a non-zero extent) and the boxes the walk tests, so a hit a rounding
@@ -114,6 +113,20 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
                n_[0], n_[1], n_[2], bounded_.size(), static_cast<unsigned long long>(entries),
                static_cast<unsigned long long>(Limits().gridEntries));
     }
+    if (search_ != Search::Voxels) {
+        hierarchy_.Build(bounded_);
+        searchesVoxels_ = search_ == Search::Automatic &&
+                          ExpectedVoxelCost(entries) < hierarchy_.ExpectedCost();
+        if (!searchesVoxels_) {
+            childBoxes_.clear();
+            return;
+        }
+        hierarchy_ = ChildHierarchy{};
+    }
+    if (bounded_.size() > slotCount_) {
+        slotCount_ = bounded_.size();
+        firstSlot_ = gSlotsAllocated.fetch_add(slotCount_, std::memory_order_relaxed);
+    }
     const auto forEachCell = [&](size_t i, auto&& visit) {
         const int* r = &ranges[6 * i];
         for (int z = r[2]; z <= r[5]; ++z)
@@ -131,6 +144,19 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
         forEachCell(i, [&](int c) { cellItems_[cursor[c]++] = i; });
     }
     ComputeEmptyRuns();
+}
+
+double GridAggregate::ExpectedVoxelCost(uint64_t entries) const {
+    // Lines meeting a convex body uniformly (the surface-area heuristic's rays) cross it
+    // along chords of mean length 4·volume / area, whose projection on an axis averages
+    // half that: the walk steps through about 1 + sum over the axes of that projection
+    // over the voxel size cells, each holding entries / cells entries on average.
+    const Vec3 e = gridBox_.Extent();
+    const double halfArea = e.x * e.y + e.y * e.z + e.z * e.x;
+    const double cells = static_cast<double>(n_[0]) * n_[1] * n_[2];
+    const double crossed =
+        1 + e.x * e.y * e.z / halfArea * (1 / voxelSize_.x + 1 / voxelSize_.y + 1 / voxelSize_.z);
+    return kVoxelStepCost * crossed + kVoxelEntryCost * crossed * static_cast<double>(entries) / cells;
 }
 
 void GridAggregate::ComputeEmptyRuns() {
@@ -176,6 +202,8 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
     for (const Object* child : unbounded_) {
         if (child->Intersect(ray, tMin, tMax, hit)) found = true;
     }
+    if (bounded_.empty()) return found;
+    if (!searchesVoxels_) return hierarchy_.Intersect(ray, tMin, tMax, hit) || found;
     return Walk<false>(ray, tMin, tMax, [&](const Object* child) {
                return child->Intersect(ray, tMin, tMax, hit);
            }) ||
@@ -186,13 +214,14 @@ bool GridAggregate::Occluded(const Ray& ray, double tMin, double tMax) const {
     for (const Object* child : unbounded_) {
         if (child->Occluded(ray, tMin, tMax)) return true;
     }
+    if (bounded_.empty()) return false;
+    if (!searchesVoxels_) return hierarchy_.Occluded(ray, tMin, tMax);
     return Walk<true>(ray, tMin, tMax,
                       [&](const Object* child) { return child->Occluded(ray, tMin, tMax); });
 }
 
 template <bool kStopAtFirstHit, class Test>
 bool GridAggregate::Walk(const Ray& ray, double tMin, double& tMax, Test&& test) const {
-    if (bounded_.empty()) return false;
     double tEnter = tMin, tExit = tMax;
     if (!gridBox_.ClipRay(ray, tEnter, tExit)) return false;
 

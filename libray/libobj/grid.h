@@ -1,11 +1,14 @@
 // `grid nx ny nz … end` (spec §3.10): a uniform voxel grid over the bounded children,
-// traversed front to back with a 3-D DDA. Finds exactly the hit a list would.
+// traversed front to back with a 3-D DDA, or, when that is expected to be cheaper, the
+// hierarchy a list builds over them (the grid's resolution then only bounds its entry
+// count, as for voxels). Either finds exactly the hit a list would.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "libobj/aggregate.h"
+#include "libobj/child_hierarchy.h"
 
 namespace rs {
 
@@ -17,11 +20,16 @@ class GridAggregate final : public Aggregate {
 
     // Voxel counts per axis. Counts below 1 are raised to 1 (the parser warns and discards
     // such grids before building one); nx·ny·nz <= Limits().gridVoxels (the parser refuses more).
-    GridAggregate(int nx, int ny, int nz);
+    // How the bounded children are searched: Automatic chooses, per frame, whichever of
+    // the voxels and the hierarchy has the lower surface-area cost estimate (see
+    // PrepareFrame); the others force one (tests of either walk).
+    enum class Search { Automatic, Voxels, Hierarchy };
+    GridAggregate(int nx, int ny, int nz, Search search = Search::Automatic);
 
     const char* TypeName() const override { return "grid"; }
 
-    // Unbounded children are tested first, then the voxels the segment (tMin, tMax) crosses,
+    // Unbounded children are tested first, then the bounded ones: through the hierarchy, or
+    // the voxels the segment (tMin, tMax) crosses,
     // front to back, until the nearest hit so far lies within the current voxel (runs of
     // empty voxels are crossed in one move). Each bounded
     // child is considered at most once per call (per-thread mailboxes) and tested only when
@@ -37,8 +45,10 @@ class GridAggregate final : public Aggregate {
 
     // Rebuilds the grid from the children's BoundsInParent() for this frame. Throws
     // FatalError (after rs::Report) when the children would need more than Limits().gridEntries
-    // voxel entries.
+    // voxel entries (whichever search is then chosen).
     void PrepareFrame(double frameTime, double shutter) override;
+    // Whether this frame's search walks the voxels (false: the hierarchy).
+    bool SearchesVoxels() const { return searchesVoxels_; }
 
   private:
     // The voxel walk over the bounded children: test(child) searches one child (it may shrink
@@ -52,7 +62,20 @@ class GridAggregate final : public Aggregate {
     // Fills emptyRun_ from the cells' contents.
     void ComputeEmptyRuns();
 
+    // The voxels' expected cost for a ray through the grid box, in the hierarchy's units
+    // (BoundingVolumeHierarchy::ExpectedCost), given the total count of voxel entries.
+    double ExpectedVoxelCost(uint64_t entries) const;
+    // A voxel step and a voxel entry (mailbox check and box test) against one hierarchy
+    // unit (a four-box node test or an item visit), calibrated on the SPD grid files'
+    // render instructions (bench/spd.sh): with these weights the estimate picks the voxels
+    // for gears (voxels 0.84x the hierarchy's instructions) and the hierarchy for balls,
+    // mount and teapot (0.90x, 0.77x, 0.60x the voxels'), tetra and tree.
+    static constexpr double kVoxelStepCost = 0.25, kVoxelEntryCost = 0.25;
+
     int n_[3];
+    Search search_;
+    bool searchesVoxels_ = true;
+    ChildHierarchy hierarchy_;  // when !searchesVoxels_
     Bounds3 bounds_;   // union of the bounded children's boxes
     Bounds3 gridBox_;  // bounds_ padded by kEpsilon: the voxelised region
     Vec3 voxelSize_;

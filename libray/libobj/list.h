@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "libobj/aggregate.h"
-#include "libgeom/bvh.h"
+#include "libobj/child_hierarchy.h"
 
 namespace rs {
 
@@ -37,7 +37,8 @@ class ListAggregate final : public Aggregate {
     Bounds3 bounds_;
     bool hasBounded_ = false;
     std::vector<const Object*> unbounded_, bounded_;
-    BoundingVolumeHierarchy hierarchy_;  // over bounded_, when there are enough
+    bool useHierarchy_ = false;  // there are enough bounded children: search hierarchy_
+    ChildHierarchy hierarchy_;
 };
 
 }  // namespace rs

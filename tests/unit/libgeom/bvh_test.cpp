@@ -186,6 +186,41 @@ TEST_P(BvhTest, EmptyHierarchyVisitsNothing) {
     EXPECT_EQ(visits, 0);
 }
 
+TEST_P(BvhTest, BuildingAgainReplacesTheTree) {
+    Rng rng(15);
+    BoundingVolumeHierarchy bvh;
+    bvh.Build(RandomBoxes(rng, 40), GetParam());
+    // The second set far from the first: a walk through a stale tree would miss it.
+    std::vector<Bounds3> moved = RandomBoxes(rng, 30);
+    for (Bounds3& b : moved) b = {b.lo + Vec3{100, 0, 0}, b.hi + Vec3{100, 0, 0}};
+    bvh.Build(moved, GetParam());
+    for (int r = 0; r < 200; ++r) {
+        Ray ray = RandomRay(rng, r);
+        ray.origin.x += 100;
+        const std::set<int> expected = BruteForceMeeting(moved, ray, 0, 60);
+        std::set<int> visited;
+        double tMax = 60;
+        bvh.Traverse(ray, 0, tMax, [&](int i) { return visited.insert(i), false; });
+        for (int i : expected) EXPECT_EQ(visited.count(i), 1u) << "ray " << r;
+    }
+}
+
+TEST(BvhCost, ExpectedCostCountsNodeAndItemTestsByArea) {
+    // Unit cubes at x = 0, 10, 20: median splits give a root over [0, 21] x [0, 1]^2 (half
+    // area 43) with two leaf lanes, cube 0 (half area 3) and cubes 1-2 ([10, 21] x [0, 1]^2,
+    // 23): one wide node test plus 3/43 of one item and 23/43 of two.
+    std::vector<Bounds3> cubes;
+    for (double x : {0.0, 10.0, 20.0}) cubes.emplace_back(Vec3{x, 0, 0}, Vec3{x + 1, 1, 1});
+    BoundingVolumeHierarchy bvh;
+    bvh.Build(cubes, Split::Median);
+    EXPECT_DOUBLE_EQ(bvh.ExpectedCost(), (43.0 + 3 + 2 * 23) / 43);
+    // One item: its leaf is the root, met by every ray meeting the root.
+    bvh.Build({cubes[0]}, Split::SurfaceArea);
+    EXPECT_DOUBLE_EQ(bvh.ExpectedCost(), 2);
+    bvh.Build({}, Split::SurfaceArea);
+    EXPECT_EQ(bvh.ExpectedCost(), 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Splits, BvhTest, ::testing::Values(Split::Median, Split::SurfaceArea),
                          [](const ::testing::TestParamInfo<Split>& split) {
                              return split.param == Split::Median ? "Median" : "SurfaceArea";

@@ -27,6 +27,8 @@ std::shared_ptr<Object> Wrap(std::shared_ptr<Aggregate> agg,
     return node;
 }
 
+using Search = GridAggregate::Search;
+
 double Uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * rng.Uniform(); }
 
 Vec3 RandomPoint(Rng& rng, double lo, double hi) {
@@ -91,16 +93,19 @@ Ray RandomRayAmong(Rng& rng, const std::vector<std::shared_ptr<Object>>& childre
     return {origin, MaybeAxisParallel(rng, dir * Uniform(rng, 0.5, 2)), 0};
 }
 
+// Either search, forced or chosen.
 TEST(GridAggregate, FindsTheSameHitsAsAListOnRandomScenes) {
-    for (uint64_t seed = 1; seed <= 40; ++seed) {
+    for (uint64_t seed = 1; seed <= 60; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
         Rng rng(seed);
         const auto children = RandomScene(rng, seed % 4 == 0);
         const int nx = 1 + static_cast<int>(rng.Uniform() * 12);
         const int ny = 1 + static_cast<int>(rng.Uniform() * 12);
         const int nz = 1 + static_cast<int>(rng.Uniform() * 12);
+        const Search search = seed % 3 == 0 ? Search::Voxels : seed % 3 == 1 ? Search::Hierarchy
+                                                                             : Search::Automatic;
         auto list = Wrap(std::make_shared<ListAggregate>(), children);
-        auto grid = Wrap(std::make_shared<GridAggregate>(nx, ny, nz), children);
+        auto grid = Wrap(std::make_shared<GridAggregate>(nx, ny, nz, search), children);
         EXPECT_EQ(grid->IsBounded(), list->IsBounded());
         EXPECT_EQ(grid->aggregate()->Bounds().lo, list->aggregate()->Bounds().lo);
         EXPECT_EQ(grid->aggregate()->Bounds().hi, list->aggregate()->Bounds().hi);
@@ -143,7 +148,7 @@ TEST(GridAggregate, CrossingEmptyRunsKeepsEveryHit) {
         children.push_back(Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{10, -10, 0}, 2)));
         const int n = 20 + static_cast<int>(rng.Uniform() * 40);
         auto list = Wrap(std::make_shared<ListAggregate>(), children);
-        auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 7, n / 2 + 3), children);
+        auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 7, n / 2 + 3, Search::Voxels), children);
         int hits = 0;
         for (int i = 0; i < 4000; ++i) {
             const Ray ray = RandomRayAmong(rng, children, i, 14, 0.3);
@@ -166,7 +171,7 @@ TEST(GridAggregate, TestsAChildSpanningManyVoxelsOncePerRay) {
     // The grid is [-5, 5]³ in 8×8×8 voxels of 1.25: the big sphere (radius 4) is registered
     // in every voxel; small spheres sit in two opposite corners.
     auto big = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 0, 0}, 4, "BigSphere"));
-    auto grid = Wrap(std::make_shared<GridAggregate>(8, 8, 8),
+    auto grid = Wrap(std::make_shared<GridAggregate>(8, 8, 8, Search::Voxels),
                      {big, Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{-4, -4, -4}, 1)),
                       Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{4, 4, 4}, 1))});
     ResetStats();
@@ -188,7 +193,7 @@ TEST(GridAggregate, StopsOnceTheHitLiesInTheCurrentVoxel) {
             for (int z = 0; z < 10; ++z)
                 spheres.push_back(Object::MakePrimitive(
                     std::make_shared<TestSphere>(Vec3(x, y, z), 0.3, "LatticeSphere")));
-    auto grid = Wrap(std::make_shared<GridAggregate>(10, 10, 10), spheres);
+    auto grid = Wrap(std::make_shared<GridAggregate>(10, 10, 10, Search::Voxels), spheres);
     ResetStats();
     HitRecord hit;
     double tMax = kFar;
@@ -211,7 +216,7 @@ TEST(GridAggregate, StopsOnceTheHitLiesInTheCurrentVoxel) {
 // Many small objects (flat triangles, some in axis planes, and spheres) spanning a few voxels
 // each, in fine grids, against a brute-force loop over every child: the mailboxes and the
 // per-child box rejection must never lose or change a hit, and no child may be tested
-// twice by one call.
+// twice by one call; nor may the hierarchy's search (odd seeds).
 TEST(GridAggregate, MailboxesAndBoxRejectionKeepEveryHit) {
     for (uint64_t seed = 1; seed <= 12; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
@@ -235,7 +240,8 @@ TEST(GridAggregate, MailboxesAndBoxRejectionKeepEveryHit) {
             children.push_back(Object::MakePrimitive(std::make_shared<Triangle>(p, false)));
         }
         const int n = 4 + static_cast<int>(rng.Uniform() * 28);
-        auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 3, n / 2 + 1), children);
+        const Search search = seed % 2 == 0 ? Search::Voxels : Search::Hierarchy;
+        auto grid = Wrap(std::make_shared<GridAggregate>(n, n + 3, n / 2 + 1, search), children);
         int hits = 0;
         for (int i = 0; i < 2000; ++i) {
             const Ray ray = RandomRayAmong(rng, children, i, 5, 0.1);
@@ -265,9 +271,9 @@ TEST(GridAggregate, MailboxesAndBoxRejectionKeepEveryHit) {
 TEST(GridAggregate, NestedGridsTestEachChildOncePerCall) {
     auto wide = Object::MakePrimitive(
         std::make_shared<TestSphere>(Vec3{0, 0, 0}, 4, "WideSphere"));
-    auto inner = Wrap(std::make_shared<GridAggregate>(6, 6, 6),
+    auto inner = Wrap(std::make_shared<GridAggregate>(6, 6, 6, Search::Voxels),
                       {wide, Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{3, 3, 3}, 1))});
-    auto outer = Wrap(std::make_shared<GridAggregate>(7, 7, 7),
+    auto outer = Wrap(std::make_shared<GridAggregate>(7, 7, 7, Search::Voxels),
                       {inner, Object::MakePrimitive(
                                   std::make_shared<TestSphere>(Vec3{-4, -4, -4}, 1, "CornerSphere"))});
     for (int i = 0; i < 3; ++i) {
@@ -280,10 +286,12 @@ TEST(GridAggregate, NestedGridsTestEachChildOncePerCall) {
     }
 }
 
-TEST(GridAggregate, UnboundedChildrenAreTestedSeparately) {
+class GridSearches : public ::testing::TestWithParam<Search> {};
+
+TEST_P(GridSearches, UnboundedChildrenAreTestedSeparately) {
     auto plane = Object::MakePrimitive(std::make_shared<TestPlane>());
     auto sphere = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 0, 5}, 1));
-    auto grid = Wrap(std::make_shared<GridAggregate>(4, 4, 4), {sphere, plane});
+    auto grid = Wrap(std::make_shared<GridAggregate>(4, 4, 4, GetParam()), {sphere, plane});
     EXPECT_TRUE(grid->aggregate()->IsBounded());
     EXPECT_FALSE(grid->IsBounded());
     HitRecord hit;
@@ -297,8 +305,8 @@ TEST(GridAggregate, UnboundedChildrenAreTestedSeparately) {
     EXPECT_EQ(hit.primitive, sphere->primitive());
 }
 
-TEST(GridAggregate, OnlyUnboundedChildren) {
-    auto grid = Wrap(std::make_shared<GridAggregate>(3, 3, 3),
+TEST_P(GridSearches, OnlyUnboundedChildren) {
+    auto grid = Wrap(std::make_shared<GridAggregate>(3, 3, 3, GetParam()),
                      {Object::MakePrimitive(std::make_shared<TestPlane>())});
     EXPECT_FALSE(grid->aggregate()->IsBounded());
     HitRecord hit;
@@ -307,11 +315,11 @@ TEST(GridAggregate, OnlyUnboundedChildren) {
     EXPECT_DOUBLE_EQ(hit.t(), 0.5);
 }
 
-TEST(GridAggregate, FlatChildrenAndFlatGrids) {
+TEST_P(GridSearches, FlatChildrenAndFlatGrids) {
     // Two zero-thickness boxes in the plane z = 0 make a flat grid.
     auto a = Object::MakePrimitive(std::make_shared<TestBox>(Vec3{0, 0, 0}, Vec3{1, 1, 0}));
     auto b = Object::MakePrimitive(std::make_shared<TestBox>(Vec3{2, 0, 0}, Vec3{3, 1, 0}));
-    auto grid = Wrap(std::make_shared<GridAggregate>(5, 5, 5), {a, b});
+    auto grid = Wrap(std::make_shared<GridAggregate>(5, 5, 5, GetParam()), {a, b});
     HitRecord hit;
     double tMax = kFar;
     ASSERT_TRUE(grid->Intersect({{2.5, 0.5, 3}, {0, 0, -1}}, kEpsilon, tMax, hit));
@@ -323,29 +331,56 @@ TEST(GridAggregate, FlatChildrenAndFlatGrids) {
     EXPECT_DOUBLE_EQ(hit.t(), 1);
 }
 
-TEST(GridAggregate, SizesBelowOneAreRaisedToOne) {
+TEST_P(GridSearches, SizesBelowOneAreRaisedToOne) {
     auto s = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 0, 0}, 1));
-    auto grid = Wrap(std::make_shared<GridAggregate>(0, -3, 1), {s});
+    auto grid = Wrap(std::make_shared<GridAggregate>(0, -3, 1, GetParam()), {s});
     HitRecord hit;
     double tMax = kFar;
     ASSERT_TRUE(grid->Intersect({{0, 0, -3}, {0, 0, 1}}, kEpsilon, tMax, hit));
     EXPECT_DOUBLE_EQ(hit.t(), 2);
 }
 
-TEST(GridAggregate, RebuildsForEachFrame) {
+// The hierarchy is rebuilt too, not extended: its walk starts at the new frame's root.
+TEST_P(GridSearches, RebuildsForEachFrame) {
     // An animated instance: translated by (time, 0, 0).
     auto s = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 0, 0}, 1));
     auto moving = Object::MakeInstance(s);
     moving->parentFromObject.AppendAnimated(
         [](double time) -> std::optional<Transform> { return Transform::Translate({time, 0, 0}); });
     auto anchor = Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0, 10, 0}, 1));
-    auto grid = Wrap(std::make_shared<GridAggregate>(4, 4, 4), {moving, anchor});
+    auto grid = Wrap(std::make_shared<GridAggregate>(4, 4, 4, GetParam()), {moving, anchor});
     grid->PrepareFrame(5, 0);
     HitRecord hit;
     double tMax = kFar;
     // At time 5 the sphere is centred on x = 5; a ray down the z axis through x = 5.
     ASSERT_TRUE(grid->Intersect({{5, 0, 10}, {0, 0, -1}, 5}, kEpsilon, tMax, hit));
     EXPECT_DOUBLE_EQ(hit.t(), 9);
+    tMax = kFar;
+    EXPECT_FALSE(grid->Intersect({{0, 0, 10}, {0, 0, -1}, 5}, kEpsilon, tMax, hit));
+}
+
+INSTANTIATE_TEST_SUITE_P(VoxelsAndHierarchy, GridSearches,
+                         ::testing::Values(Search::Voxels, Search::Hierarchy));
+
+TEST(GridAggregate, AutomaticSearchTakesTheCheaperEstimate) {
+    // A fine grid (80³ voxels of 0.12) over a sparse lattice of 1000 small spheres: a ray
+    // crosses about 80 voxels, most empty, where the hierarchy needs a few node tests on
+    // the way down to one sphere (about log4 1000 levels).
+    std::vector<std::shared_ptr<Object>> lattice;
+    for (int x = 0; x < 10; ++x)
+        for (int y = 0; y < 10; ++y)
+            for (int z = 0; z < 10; ++z)
+                lattice.push_back(Object::MakePrimitive(std::make_shared<TestSphere>(Vec3(x, y, z), 0.3)));
+    auto fine = Wrap(std::make_shared<GridAggregate>(80, 80, 80), lattice);
+    EXPECT_FALSE(static_cast<const GridAggregate*>(fine->aggregate())->SearchesVoxels());
+    // One voxel holding 40 nested spheres, all spanning the whole box: the hierarchy cannot
+    // separate them (every node box is the root's), so it pays its node tests on top of
+    // the 40 sphere visits, where the voxel walk checks 40 entries in one cell.
+    std::vector<std::shared_ptr<Object>> nested;
+    for (int i = 0; i < 40; ++i)
+        nested.push_back(Object::MakePrimitive(std::make_shared<TestSphere>(Vec3{0.01 * i, 0, 0}, 5)));
+    auto coarse = Wrap(std::make_shared<GridAggregate>(1, 1, 1), nested);
+    EXPECT_TRUE(static_cast<const GridAggregate*>(coarse->aggregate())->SearchesVoxels());
 }
 
 }  // namespace

@@ -78,7 +78,8 @@ std::vector<std::shared_ptr<Object>> Primitives(Rng& rng, const Vec3& c) {
 }
 
 // Nodes to query: each primitive, CSG of closed shapes, instances, a list, a grid, and a
-// top-level list holding a plane, the grid, instances of the list and the CSG nodes.
+// top-level list holding a plane, the grid, instances of the list and the CSG nodes (the
+// grids: one walking its voxels, one its hierarchy, the top-level one choosing).
 std::vector<std::shared_ptr<Object>> Nodes(Rng& rng) {
     std::vector<std::shared_ptr<Object>> nodes, all;
     for (int k = 0; k < 6; ++k) {
@@ -94,7 +95,7 @@ std::vector<std::shared_ptr<Object>> Nodes(Rng& rng) {
                             Prim(std::make_shared<Box>(c, c + RandomPoint(rng, -1.5, 1.5)))}));
     }
     auto list = Agg(std::make_shared<ListAggregate>(), all);
-    auto grid = Agg(std::make_shared<GridAggregate>(5, 6, 7), all);
+    auto grid = Agg(std::make_shared<GridAggregate>(5, 6, 7, GridAggregate::Search::Voxels), all);
     std::vector<std::shared_ptr<Object>> top = {Prim(std::make_shared<Plane>(Vec3{0, 0, -4}, Vec3{0, 0.3, 1})),
                                                 grid, Instance(rng, list), Instance(rng, grid)};
     top.insert(top.end(), csgs.begin(), csgs.end());
@@ -103,6 +104,7 @@ std::vector<std::shared_ptr<Object>> Nodes(Rng& rng) {
     nodes.push_back(list);
     nodes.push_back(grid);
     nodes.push_back(Agg(std::make_shared<GridAggregate>(3, 3, 3), top));
+    nodes.push_back(Agg(std::make_shared<GridAggregate>(5, 6, 7, GridAggregate::Search::Hierarchy), all));
     nodes.push_back(Agg(std::make_shared<ListAggregate>(), top));
     return nodes;
 }
