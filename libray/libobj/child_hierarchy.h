@@ -17,6 +17,8 @@ class ChildHierarchy {
     // Builds over `children` (all bounded), from their BoundsInParent() padded by kEpsilon
     // (flat children, polygons and discs, keep boxes of non-zero thickness).
     void Build(std::vector<const Object*> children);
+    // Whether nothing is built (a default-constructed or reset hierarchy).
+    bool IsEmpty() const { return hierarchy_.IsEmpty(); }
     // The hierarchy's expected cost of one ray through the children's union box, in units
     // of one box or child test (BoundingVolumeHierarchy::ExpectedCost).
     double ExpectedCost() const { return hierarchy_.ExpectedCost(); }

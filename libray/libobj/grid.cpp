@@ -63,7 +63,6 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     cellItems_.clear();
     emptyRun_.clear();
     hierarchy_ = ChildHierarchy{};
-    searchesVoxels_ = true;
     bounds_ = Bounds3{};
     for (const auto& child : children_) {
         if (child->IsBounded()) {
@@ -115,9 +114,8 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     }
     if (search_ != Search::Voxels) {
         hierarchy_.Build(bounded_);
-        searchesVoxels_ = search_ == Search::Automatic &&
-                          ExpectedVoxelCost(entries) < hierarchy_.ExpectedCost();
-        if (!searchesVoxels_) {
+        if (search_ == Search::Hierarchy ||
+            !(ExpectedVoxelCost(entries) < hierarchy_.ExpectedCost())) {
             childBoxes_.clear();
             return;
         }
@@ -203,7 +201,7 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
         if (child->Intersect(ray, tMin, tMax, hit)) found = true;
     }
     if (bounded_.empty()) return found;
-    if (!searchesVoxels_) return hierarchy_.Intersect(ray, tMin, tMax, hit) || found;
+    if (!hierarchy_.IsEmpty()) return hierarchy_.Intersect(ray, tMin, tMax, hit) || found;
     return Walk<false>(ray, tMin, tMax, [&](const Object* child) {
                return child->Intersect(ray, tMin, tMax, hit);
            }) ||
@@ -215,7 +213,7 @@ bool GridAggregate::Occluded(const Ray& ray, double tMin, double tMax) const {
         if (child->Occluded(ray, tMin, tMax)) return true;
     }
     if (bounded_.empty()) return false;
-    if (!searchesVoxels_) return hierarchy_.Occluded(ray, tMin, tMax);
+    if (!hierarchy_.IsEmpty()) return hierarchy_.Occluded(ray, tMin, tMax);
     return Walk<true>(ray, tMin, tMax,
                       [&](const Object* child) { return child->Occluded(ray, tMin, tMax); });
 }

@@ -29,11 +29,10 @@ class GridAggregate final : public Aggregate {
     const char* TypeName() const override { return "grid"; }
 
     // Unbounded children are tested first, then the bounded ones: through the hierarchy, or
-    // the voxels the segment (tMin, tMax) crosses,
-    // front to back, until the nearest hit so far lies within the current voxel (runs of
-    // empty voxels are crossed in one move). Each bounded
-    // child is considered at most once per call (per-thread mailboxes) and tested only when
-    // the remaining segment meets its box. Thread-safe.
+    // the voxels the segment (tMin, tMax) crosses, front to back, until the nearest hit so
+    // far lies within the current voxel (runs of empty voxels are crossed in one move). In
+    // the voxels, each bounded child is considered at most once per call (per-thread
+    // mailboxes) and tested only when the remaining segment meets its box. Thread-safe.
     // Requires PrepareFrame to have run.
     bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const override;
     // The same walk, returning at the first hit.
@@ -48,7 +47,7 @@ class GridAggregate final : public Aggregate {
     // voxel entries (whichever search is then chosen).
     void PrepareFrame(double frameTime, double shutter) override;
     // Whether this frame's search walks the voxels (false: the hierarchy).
-    bool SearchesVoxels() const { return searchesVoxels_; }
+    bool SearchesVoxels() const { return hierarchy_.IsEmpty(); }
 
   private:
     // The voxel walk over the bounded children: test(child) searches one child (it may shrink
@@ -74,8 +73,7 @@ class GridAggregate final : public Aggregate {
 
     int n_[3];
     Search search_;
-    bool searchesVoxels_ = true;
-    ChildHierarchy hierarchy_;  // when !searchesVoxels_
+    ChildHierarchy hierarchy_;  // this frame's search when built, else the voxels
     Bounds3 bounds_;   // union of the bounded children's boxes
     Bounds3 gridBox_;  // bounds_ padded by kEpsilon: the voxelised region
     Vec3 voxelSize_;

@@ -9,7 +9,7 @@ bool ListAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
     for (const Object* child : unbounded_)
         if (child->Intersect(ray, tMin, tMax, hit)) found = true;
     if (!hasBounded_) return found;
-    if (useHierarchy_) return hierarchy_.Intersect(ray, tMin, tMax, hit) || found;
+    if (!hierarchy_.IsEmpty()) return hierarchy_.Intersect(ray, tMin, tMax, hit) || found;
     // The box test uses tMax as shrunk by the unbounded children. Without them it would
     // repeat the owning node's pre-test of this same box (Object::Intersect), so it is
     // skipped; skipping it never changes the nearest hit, only how many children are tried.
@@ -24,7 +24,7 @@ bool ListAggregate::Occluded(const Ray& ray, double tMin, double tMax) const {
     for (const Object* child : unbounded_)
         if (child->Occluded(ray, tMin, tMax)) return true;
     if (!hasBounded_) return false;
-    if (useHierarchy_) return hierarchy_.Occluded(ray, tMin, tMax);
+    if (!hierarchy_.IsEmpty()) return hierarchy_.Occluded(ray, tMin, tMax);
     // The same box test as Intersect's: a ray missing every bounded child's box skips them
     // all, before any child maps the ray into its space (an animated transform evaluated
     // per shadow ray, in coin.ray).
@@ -48,9 +48,8 @@ void ListAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
         bounds_.Extend(child->BoundsInParent());
     }
     hasBounded_ = !bounded_.empty();
-    useHierarchy_ = bounded_.size() > kHierarchyThreshold;
     hierarchy_ = ChildHierarchy{};
-    if (useHierarchy_) hierarchy_.Build(bounded_);
+    if (bounded_.size() > kHierarchyThreshold) hierarchy_.Build(bounded_);
 }
 
 }  // namespace rs

@@ -37,8 +37,7 @@ class ListAggregate final : public Aggregate {
     Bounds3 bounds_;
     bool hasBounded_ = false;
     std::vector<const Object*> unbounded_, bounded_;
-    bool useHierarchy_ = false;  // there are enough bounded children: search hierarchy_
-    ChildHierarchy hierarchy_;
+    ChildHierarchy hierarchy_;  // over bounded_ when there are enough, else empty
 };
 
 }  // namespace rs

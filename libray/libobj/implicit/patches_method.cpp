@@ -163,10 +163,9 @@ std::optional<MethodHit> PatchesMethod::Intersect(const Ray& ray, double tMin,
         // predominate (Patch::ClipToOwnRegion): at the fluids' density a ray crosses a
         // few patches' balls for each patch it may hit in.
         double t0 = tMin, t1 = best;
-        if (cellStore_ && !FullPatch(patch).ClipToOwnRegion(ray, SeamUncertainty(ray), t0, t1)) {
-            return false;
-        }
-        std::optional<double> t = PatchFirstRoot(FullPatch(patch), Tree(patch), ray, t0, t1);
+        const Patch& full = FullPatch(patch);
+        if (cellStore_ && !full.ClipToOwnRegion(ray, SeamUncertainty(ray), t0, t1)) return false;
+        std::optional<double> t = PatchFirstRoot(full, Tree(patch), ray, t0, t1);
         if (!t) return false;
         best = *t;
         bestPatch = patch;
