@@ -1,5 +1,6 @@
 #include "libshade/lexer.h"
 
+#include <array>
 #include <charconv>
 #include <condition_variable>
 #include <deque>
@@ -11,7 +12,6 @@
 #include <cstdlib>
 #include <string_view>
 #include <mutex>
-#include <unordered_map>
 #include <unordered_set>
 
 namespace rs {
@@ -27,46 +27,90 @@ constexpr Synonym kSynonyms[] = {{"polygon", "poly"},       {"reflective", "refl
                                  {"transparent", "transp"}, {"translucency", "translu"},
                                  {"resolution", "screen"},  {"samples", "sample"}};
 
-// Spec §1.3: every keyword, mapped to its canonical spelling, plus `implicit`, our
-// Implicit Patches primitive (libray/libobj/implicit/README.md), and `patches`, its debug
-// texture (libray/libtext/patches_texture.h). Synonyms map to the spelling
-// the grammar uses; `samples` (the quick reference's spelling) is accepted for `sample`.
-// Keys and values view string literals, so a lookup builds no string.
-const std::unordered_map<std::string_view, std::string_view>& KeywordTable() {
-    static const std::unordered_map<std::string_view, std::string_view> table = [] {
-        std::unordered_map<std::string_view, std::string_view> t;
-        const char* words[] = {
-            "ambient",     "aperture",    "applysurf",    "area",      "atmosphere", "background",
-            "blob",        "blotch",      "body",         "box",       "bump",       "checker",
-            "cloud",       "component",   "cone",         "contrast",  "crop",       "cursurf",
-            "cutoff",      "cylinder",    "cylindrical",  "define",    "diffuse",    "difference",
-            "directional", "disc",        "end",          "extended",  "extinct",    "eyep",
-            "eyesep",      "fbm",         "fbmbump",      "filter",    "focaldist",  "fog",
-            "fogdeck",     "fov",         "framelength",  "frames",    "gauss",      "gloss",
-            "grid",        "heightfield", "image",        "implicit",  "index",      "intersect",
-            "jitter",      "patches",
-            "light",       "list",        "lookp",        "map",       "marble",     "maxdepth",
-            "mist",        "mount",       "name",         "nojitter",  "noshadow",   "object",
-            "outfile",     "planar",      "plane",        "point",     "poly",       "print",
-            "quiet",       "range",       "reflect",      "report",    "rotate",     "sample",
-            "scale",       "screen",      "shadowtransp", "shutter",   "sky",        "smooth",
-            "specpow",     "specular",    "sphere",       "spherical", "spot",       "starttime",
-            "stripe",      "surface",     "textsurf",     "texture",   "tile",       "torus",
-            "transform",   "translate",   "translu",      "transp",    "triangle",   "triangleuv",
-            "union",       "up",          "uv",           "verbose",   "window",     "windy",
-            "wood"};
-        for (const char* w : words) t.emplace(w, w);
-        for (const Synonym& s : kSynonyms) t.emplace(s.word, s.keyword);
-        return t;
-    }();
-    return table;
-}
+// Spec §1.3: every keyword in its canonical spelling, plus `implicit`, our Implicit Patches
+// primitive (libray/libobj/implicit/README.md), and `patches`, its debug texture
+// (libray/libtext/patches_texture.h). Synonyms (kSynonyms) map to the spelling the grammar
+// uses; `samples` (the quick reference's spelling) is accepted for `sample`.
+constexpr std::string_view kKeywords[] = {
+    "ambient",     "aperture",    "applysurf",    "area",      "atmosphere", "background",
+    "blob",        "blotch",      "body",         "box",       "bump",       "checker",
+    "cloud",       "component",   "cone",         "contrast",  "crop",       "cursurf",
+    "cutoff",      "cylinder",    "cylindrical",  "define",    "diffuse",    "difference",
+    "directional", "disc",        "end",          "extended",  "extinct",    "eyep",
+    "eyesep",      "fbm",         "fbmbump",      "filter",    "focaldist",  "fog",
+    "fogdeck",     "fov",         "framelength",  "frames",    "gauss",      "gloss",
+    "grid",        "heightfield", "image",        "implicit",  "index",      "intersect",
+    "jitter",      "patches",
+    "light",       "list",        "lookp",        "map",       "marble",     "maxdepth",
+    "mist",        "mount",       "name",         "nojitter",  "noshadow",   "object",
+    "outfile",     "planar",      "plane",        "point",     "poly",       "print",
+    "quiet",       "range",       "reflect",      "report",    "rotate",     "sample",
+    "scale",       "screen",      "shadowtransp", "shutter",   "sky",        "smooth",
+    "specpow",     "specular",    "sphere",       "spherical", "spot",       "starttime",
+    "stripe",      "surface",     "textsurf",     "texture",   "tile",       "torus",
+    "transform",   "translate",   "translu",      "transp",    "triangle",   "triangleuv",
+    "union",       "up",          "uv",           "verbose",   "window",     "windy",
+    "wood"};
+
+constexpr bool kKeywordsFitTheIndex = [] {  // lower-case and shorter than 16 characters
+    for (std::string_view k : kKeywords)
+        if (k.empty() || k.size() >= 16 || k[0] < 'a' || k[0] > 'z') return false;
+    for (const Synonym& s : kSynonyms)
+        if (s.word.empty() || s.word.size() >= 16 || s.word[0] < 'a' || s.word[0] > 'z') return false;
+    return true;
+}();
+static_assert(kKeywordsFitTheIndex);
+
+// The keywords and synonyms (as Synonym: spelling, canonical keyword) grouped by first
+// letter and length, so that a lookup (one per name a scene spells) compares a word with
+// the few spellings of its group and hashes nothing.
+class KeywordIndex {
+  public:
+    KeywordIndex() {
+        std::vector<Synonym> all;
+        for (std::string_view k : kKeywords) all.push_back({k, k});
+        for (const Synonym& s : kSynonyms) all.push_back(s);
+        for (const Synonym& s : all) ++groups_[Group(s.word)].count;  // every word has a group
+        uint16_t start = 0;
+        for (Range& g : groups_) {
+            g.start = start;
+            start = static_cast<uint16_t>(start + g.count);
+        }
+        entries_.resize(all.size());
+        std::array<uint16_t, kGroups> filled{};
+        for (const Synonym& s : all) {
+            const size_t g = Group(s.word);
+            entries_[groups_[g].start + filled[g]++] = s;
+        }
+    }
+
+    // The canonical spelling of keyword `word`, or an empty view.
+    std::string_view Find(std::string_view word) const {
+        if (word.empty() || word.size() >= kLengths || word[0] < 'a' || word[0] > 'z') return {};
+        const Range& g = groups_[Group(word)];
+        for (uint16_t i = g.start; i < g.start + g.count; ++i)
+            if (entries_[i].word == word) return entries_[i].keyword;
+        return {};
+    }
+
+  private:
+    static constexpr size_t kLengths = 16;  // longer words are no keywords
+    static constexpr size_t kGroups = 26 * kLengths;
+    // `word` starts with a lower-case letter and is shorter than kLengths.
+    static size_t Group(std::string_view word) {
+        return static_cast<size_t>(word[0] - 'a') * kLengths + word.size();
+    }
+    struct Range {
+        uint16_t start = 0, count = 0;
+    };
+    std::array<Range, kGroups> groups_{};
+    std::vector<Synonym> entries_;  // by group
+};
 
 // The canonical spelling of keyword `word`, or an empty view.
 std::string_view FindKeyword(std::string_view word) {
-    static const auto& table = KeywordTable();
-    auto it = table.find(word);
-    return it == table.end() ? std::string_view() : it->second;
+    static const KeywordIndex index;
+    return index.Find(word);
 }
 
 bool IsLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
@@ -102,14 +146,15 @@ std::string Token::Describe() const {
         case TokenKind::Char: {
             unsigned char c = static_cast<unsigned char>(text[0]);
             if (c < 32 || c >= 127) return StringPrintf("character 0x%02x", c);
-            return "'" + text + "'";
+            break;
         }
         default:
-            std::string quoted = "'";  // built by appending: gcc 12's -Wrestrict misreads
-            quoted += Abbreviate(text);  // "'" + std::string&& here
-            quoted += '\'';
-            return quoted;
+            break;
     }
+    std::string quoted = "'";  // built by appending: gcc 12's -Wrestrict misreads
+    quoted += Abbreviate(std::string(text));  // "'" + std::string&& here
+    quoted += '\'';
+    return quoted;
 }
 
 Lexer::Lexer(std::string text, std::string fileName)
@@ -241,8 +286,8 @@ void Lexer::Next(Token& tok) {
 void Lexer::Lex(Token& tok) {
     SkipSpaceAndComments();
     tok.kind = TokenKind::End;
-    tok.text.clear();
-    tok.keyword.clear();
+    tok.text = {};
+    tok.keyword = {};
     tok.number = 0;
     tok.file = file_;
     tok.line = line_;
@@ -253,16 +298,16 @@ void Lexer::Lex(Token& tok) {
     if ((IsDigit(c) || c == '.') && ReadNumber(tok)) return;
     if (IsLetter(c) || c == '/' || c == '.') {
         if (size_t n = MatchFilename(pos_); n > 0) {
-            tok.text.assign(text_, pos_, n);
+            tok.text = std::string_view(text_).substr(pos_, n);
             pos_ += n;
             if (n > kMaxNameLength)
                 Fail(StringPrintf("Name longer than %zu characters: %%s", kMaxNameLength).c_str(),
-                     tok.text);
-            if (tok.text.find('/') != std::string::npos) {
+                     std::string(tok.text));
+            if (tok.text.find('/') != std::string_view::npos) {
                 tok.kind = TokenKind::Filename;
             } else if (std::string_view k = FindKeyword(tok.text); !k.empty()) {
                 tok.kind = TokenKind::Keyword;
-                tok.keyword.assign(k);
+                tok.keyword = k;
             } else {
                 tok.kind = TokenKind::Name;
             }
@@ -270,7 +315,7 @@ void Lexer::Lex(Token& tok) {
         }
     }
     tok.kind = TokenKind::Char;
-    tok.text.assign(1, c);
+    tok.text = std::string_view(text_).substr(pos_, 1);
     ++pos_;
 }
 
@@ -331,14 +376,15 @@ bool Lexer::ReadNumber(Token& tok) {
     if (n == 0) return false;
     const char* end = begin + n;
     tok.kind = TokenKind::Number;
-    tok.text.assign(begin, n);
+    tok.text = std::string_view(begin, n);
     pos_ += n;
     if (exact) return true;
     // from_chars and strtod both round correctly; strtod settles what from_chars leaves
     // (out of range: infinity, zero or a subnormal, as before).
+    const std::string spelling(tok.text);
     if (auto [stop, error] = std::from_chars(begin, end, tok.number); error != std::errc() || stop != end)
-        tok.number = std::strtod(tok.text.c_str(), nullptr);
-    if (!std::isfinite(tok.number)) Fail("Number out of range: %s", tok.text);
+        tok.number = std::strtod(spelling.c_str(), nullptr);
+    if (!std::isfinite(tok.number)) Fail("Number out of range: %s", spelling);
     return true;
 }
 

@@ -29,10 +29,12 @@ enum class TokenKind {
     Char,      // any other single character, in `text`
 };
 
+// A token views its spelling in the lexer's text, so it is valid while the Lexer (or the
+// TokenStream) that made it lives; copying one copies no characters.
 struct Token {
     TokenKind kind = TokenKind::End;
-    std::string text;     // the spelling as written
-    std::string keyword;  // canonical keyword (Keyword tokens only)
+    std::string_view text;     // the spelling as written (in the lexer's text)
+    std::string_view keyword;  // canonical keyword (Keyword tokens only; a static string)
     double number = 0;
     // Where the token starts: the file name, interned for the whole process (InternFileName;
     // null only in a default-constructed Token), and the line.
@@ -72,8 +74,7 @@ class Lexer {
     Lexer(std::string text, std::string fileName);
 
     Token Next();
-    // The same into `tok`, reusing its strings' storage (the token stream's ring lexes into
-    // its slots this way, so large scenes allocate nothing per token).
+    // The same into `tok`.
     void Next(Token& tok);
     // The same, throwing a lexical error as LexicalError instead of reporting it: a lexer
     // running ahead on another thread hands the error to the parser's thread, which
@@ -99,7 +100,7 @@ class Lexer {
 class BackgroundLexer;
 
 // A lexer with arbitrary lookahead, buffered in a ring that is reused (no allocation per
-// token).
+// token). Its tokens view its text: they are valid while the stream lives.
 class TokenStream {
   public:
     // With `background`, a second thread lexes ahead while the parser reads (for large

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -11,8 +12,11 @@
 namespace rs {
 namespace {
 
+// The tokens of `text`. Tokens view their lexer's text, so the lexers made here are kept for
+// the rest of the test program.
 std::vector<Token> LexAll(const std::string& text, const std::string& file = "t.ray") {
-    Lexer lexer(text, file);
+    static std::vector<std::unique_ptr<Lexer>> lexers;
+    Lexer& lexer = *lexers.emplace_back(std::make_unique<Lexer>(text, file));
     std::vector<Token> out;
     while (true) {
         Token t = lexer.Next();
@@ -190,7 +194,7 @@ std::vector<std::string> ReadStream(const std::string& text, bool background) {
         while (true) {
             s.Peek(1);
             const Token t = s.Next();
-            out.push_back(std::to_string(static_cast<int>(t.kind)) + " " + t.text + " " +
+            out.push_back(std::to_string(static_cast<int>(t.kind)) + " " + std::string(t.text) + " " +
                           t.Location().file + ":" + std::to_string(t.Location().line));
             if (t.kind == TokenKind::End) break;
         }
