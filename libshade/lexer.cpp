@@ -1,6 +1,7 @@
 #include "libshade/lexer.h"
 
 #include <array>
+#include <bit>
 #include <charconv>
 #include <condition_variable>
 #include <deque>
@@ -10,6 +11,7 @@
 #include <cstdint>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <string_view>
 #include <mutex>
 #include <unordered_set>
@@ -172,21 +174,23 @@ void Lexer::Fail(const char* format, const std::string& arg) const {
 }
 
 void Lexer::SkipSpaceAndComments() {
-    while (pos_ < text_.size()) {
-        // Runs of blanks first, in locals (most of a large scene's characters between tokens).
-        const char* text = text_.data();
+    // Locals, and the NUL after the text ends every run (most of a large scene's characters
+    // between tokens are single blanks and newlines).
+    const char* text = text_.c_str();
+    const size_t size = text_.size();
+    while (true) {
         size_t p = pos_;
-        while (IsBlank(text[p])) ++p;  // the NUL after the text ends the run
-        pos_ = p;
-        if (pos_ >= text_.size()) return;
-        char c = text_[pos_];
-        if (c == '\n') {
+        while (IsBlank(text[p])) ++p;
+        if (text[p] == '\n') {
             ++line_;
-            ++pos_;
+            pos_ = p + 1;
             atLineStart_ = true;
-        } else if (IsBlank(c)) {
-            ++pos_;
-        } else if (c == '/' && At(text_, pos_ + 1) == '*') {
+            continue;
+        }
+        pos_ = p;
+        if (p >= size) return;
+        const char c = text[p];
+        if (c == '/' && text[p + 1] == '*') {
             int startLine = line_;
             size_t end = text_.find("*/", pos_ + 2);
             if (end == std::string::npos) {
@@ -321,25 +325,60 @@ void Lexer::Lex(Token& tok) {
 
 namespace {
 
+// Appends the run of decimal digits at `p` to `m` (m·10^k + the k digits' value, wrapping
+// modulo 2^64) and returns the end of the run. Reads no byte at or past `limit` other than
+// the NUL there, which ends the run. Eight bytes at a time while eight remain before
+// `limit`: their values less '0' are digits exactly up to the first byte that is not one
+// (a borrow only moves to later bytes), and the leading digits, moved to the high end as
+// if led by zeros, are combined by pairs, fours and eights in three multiplications (on
+// little-endian machines; elsewhere one byte at a time).
+inline __attribute__((always_inline)) const char* ScanDigits(const char* p, const char* limit,
+                                                             uint64_t& m) {
+    static constexpr uint64_t kPowersOfTen[] = {1,      10,      100,      1000,     10000,
+                                                100000, 1000000, 10000000, 100000000};
+    constexpr uint64_t kOnes = 0x0101010101010101;
+    while (std::endian::native == std::endian::little && limit - p >= 8) {
+        uint64_t chunk;
+        std::memcpy(&chunk, p, 8);
+        const uint64_t values = chunk - '0' * kOnes;  // little-endian: byte i is p[i] - '0'
+        // High bit of byte i: p[i] is no digit (its value is above 9), for bytes up to the
+        // first such one.
+        const uint64_t notDigit = ((values + 0x76 * kOnes) | values) & (0x80 * kOnes);
+        const int count = notDigit == 0 ? 8 : std::countr_zero(notDigit) / 8;
+        if (count > 0) {
+            uint64_t v = values << (8 * (8 - count));  // the digits, led by 8 - count zeros
+            v = v * 10 + (v >> 8);  // byte 2i (i < 4): the value of digits 2i, 2i + 1
+            v = ((v & 0x000000FF000000FF) * (100 + (uint64_t{1000000} << 32)) +
+                 ((v >> 16) & 0x000000FF000000FF) * (1 + (uint64_t{10000} << 32))) >>
+                32;
+            m = m * kPowersOfTen[count] + v;
+        }
+        p += count;
+        if (count < 8) return p;
+    }
+    for (; IsDigit(*p); ++p) m = m * 10 + static_cast<uint64_t>(*p - '0');
+    return p;
+}
+
 // The number at `s` (D+ | D+ . D* [E] | D* . D+ [E] | D+ E with E = [eE][+-]?D+): returns
-// its length, 0 when none starts there. `s` must be NUL-terminated (the NUL ends any number).
+// its length, 0 when none starts there. The text must end with a NUL at `limit` (which ends
+// any number).
 // Reads its value on the way by Clinger's fast path: when the digits make an integer
 // m <= 2^53 and the power of ten 10^e has |e| <= 22, both are exact doubles and one
 // multiplication or division rounds m·10^e correctly, as from_chars does; `exact` says
 // whether `value` was set so.
-size_t ScanNumber(const char* s, double& value, bool& exact) {
+size_t ScanNumber(const char* s, const char* limit, double& value, bool& exact) {
     constexpr uint64_t kMaxExact = uint64_t{1} << 53;
     static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                               1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                               1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
     const char* p = s;
     uint64_t m = 0;  // the digits (wrapping when more than 19, then unused)
-    for (; IsDigit(*p); ++p) m = m * 10 + static_cast<uint64_t>(*p - '0');
+    for (; IsDigit(*p); ++p) m = m * 10 + static_cast<uint64_t>(*p - '0');  // mostly one digit
     const long intDigits = p - s;
     long fracDigits = 0;
     if (*p == '.') {
-        const char* q = p + 1;
-        for (; IsDigit(*q); ++q) m = m * 10 + static_cast<uint64_t>(*q - '0');
+        const char* q = ScanDigits(p + 1, limit, m);
         fracDigits = q - p - 1;
         p = q;
     }
@@ -372,7 +411,7 @@ size_t ScanNumber(const char* s, double& value, bool& exact) {
 bool Lexer::ReadNumber(Token& tok) {
     const char* begin = text_.c_str() + pos_;
     bool exact = false;
-    const size_t n = ScanNumber(begin, tok.number, exact);
+    const size_t n = ScanNumber(begin, text_.c_str() + text_.size(), tok.number, exact);
     if (n == 0) return false;
     const char* end = begin + n;
     tok.kind = TokenKind::Number;

@@ -140,7 +140,8 @@ class Parser final : public ParserServices {
     void ParseSurfaceDefinition();
 
     std::shared_ptr<Object> ParseInstance();
-    std::shared_ptr<Object> ParsePrimitive();
+    // `row`: the primitive the next token names.
+    std::shared_ptr<Object> ParsePrimitive(const PrimitiveEntry& row);
     std::shared_ptr<Object> ParseAggregate();
     std::shared_ptr<Object> ParseObjectReference();
     void ParseTransforms(TransformList& list);
@@ -585,8 +586,9 @@ void Parser::ParseSurfaceDefinition() {
 std::shared_ptr<Object> Parser::ParseInstance() {
     const Token& t = tokens_.Peek();
     std::shared_ptr<Object> node;
-    if (t.kind == TokenKind::Keyword && IsPrimitiveKeyword(t.keyword)) {
-        node = ParsePrimitive();
+    const PrimitiveEntry* primitive = t.kind == TokenKind::Keyword ? FindPrimitive(t.keyword) : nullptr;
+    if (primitive) {
+        node = ParsePrimitive(*primitive);
     } else if (t.kind == TokenKind::Keyword && IsAggregateKeyword(t.keyword)) {
         node = ParseAggregate();
     } else if (t.IsKeyword("object")) {
@@ -605,12 +607,8 @@ std::shared_ptr<Object> Parser::ParseInstance() {
     return node;
 }
 
-std::shared_ptr<Object> Parser::ParsePrimitive() {
+std::shared_ptr<Object> Parser::ParsePrimitive(const PrimitiveEntry& row) {
     Token kw = tokens_.Next();
-    const PrimitiveEntry* row = FindPrimitive(kw.keyword);
-    if (!row)
-        FailAt(kw.Location(), "",
-               "The '" + std::string(kw.keyword) + "' primitive is not supported yet");
     std::shared_ptr<const Surface> surface;
     bool surfaceFollows = PeekSurfaceStart();
     // heightfield's own argument is a file name, which may lex as a NAME too: a NAME is the
@@ -619,12 +617,12 @@ std::shared_ptr<Object> Parser::ParsePrimitive() {
         TokenKind after = tokens_.Peek(1).kind;
         surfaceFollows = after == TokenKind::Name || after == TokenKind::Filename;
     }
-    if (surfaceFollows && row->startsArguments && tokens_.Peek().kind == TokenKind::Name &&
-        row->startsArguments(std::string(tokens_.Peek().text)))
+    if (surfaceFollows && row.startsArguments && tokens_.Peek().kind == TokenKind::Name &&
+        row.startsArguments(std::string(tokens_.Peek().text)))
         surfaceFollows = false;
-    if (surfaceFollows) surface = ParseSurface(row->usage);
-    TokenArgReader args(*this, kw, row->usage);
-    std::shared_ptr<Primitive> prim = row->create(args);
+    if (surfaceFollows) surface = ParseSurface(row.usage);
+    TokenArgReader args(*this, kw, row.usage);
+    std::shared_ptr<Primitive> prim = row.create(args);
     if (!prim) return nullptr;  // degenerate: the factory has warned
     std::shared_ptr<Object> node = Object::MakePrimitive(std::move(prim));
     // Spec §3.5 quirk: a height field without its own surface ignores applysurf.
@@ -654,10 +652,11 @@ std::shared_ptr<Object> Parser::ParseAggregate() {
     while (!tokens_.Peek().IsKeyword("end")) {
         const Token& t = tokens_.Peek();
         if (t.kind == TokenKind::End) args.Fail("Missing 'end' for this '" + k + "'");
+        if (ParseScopedItem(children)) continue;
+        // (None of these starts a scoped item.)
         if (t.kind == TokenKind::Keyword && IsTopLevelOnly(t.keyword))
             FailAt(t.Location(), "", "'" + std::string(t.text) + "' is not allowed inside an aggregate");
-        if (!ParseScopedItem(children))
-            FailAt(t.Location(), "", "Expected an object or 'end', found " + t.Describe());
+        FailAt(t.Location(), "", "Expected an object or 'end', found " + t.Describe());
     }
     tokens_.Next();
     scopes_.pop_back();

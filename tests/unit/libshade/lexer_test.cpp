@@ -94,6 +94,15 @@ TEST(Lexer, NumbersRoundAsStrtodDoes) {
         auto t = LexAll(spelling);
         ASSERT_EQ(t.size(), 1u) << spelling;
         EXPECT_EQ(t[0].number, expected) << spelling;
+        // With text after it, the digits are read eight at a time up to a run's end;
+        // every character that may follow a digit run ends it.
+        const char* const kFollowers = " \n-+*/x,()";  // none continues a number
+        const std::string longer =
+            spelling + kFollowers[static_cast<size_t>(i) % 10] + " 12345678 abcdefgh";
+        auto u = LexAll(longer);
+        ASSERT_GE(u.size(), 2u) << longer;
+        EXPECT_EQ(u[0].number, expected) << longer;
+        EXPECT_EQ(u[0].text, spelling) << longer;
     }
 }
 
