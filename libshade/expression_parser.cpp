@@ -171,6 +171,7 @@ class ExpressionParser {
 }  // namespace
 
 bool ReadLiteral(TokenStream& tokens, double& value) {
+    if (Lexer* lexer = tokens.DirectLexer()) return lexer->NextLiteral(value);
     const Token& t = tokens.Peek();
     if (t.kind == TokenKind::Number) {
         value = t.number;
@@ -189,6 +190,7 @@ bool ReadLiteral(TokenStream& tokens, double& value) {
 }
 
 bool PeekExpression(TokenStream& tokens) {
+    if (Lexer* lexer = tokens.DirectLexer()) return lexer->StartsExpression();
     const Token& t = tokens.Peek();
     if (t.kind == TokenKind::Number || t.IsChar('(')) return true;
     return (t.IsChar('-') || t.IsChar('+')) && tokens.Peek(1).kind == TokenKind::Number;

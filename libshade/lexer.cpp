@@ -323,6 +323,55 @@ void Lexer::Lex(Token& tok) {
     ++pos_;
 }
 
+bool Lexer::NextLiteral(double& value) {
+    try {
+        SkipSpaceAndComments();
+        const char c = At(text_, pos_);
+        if (c != '-' && c != '+') return ReadNumberValue(value);
+        const Position sign = Save();
+        ++pos_;
+        atLineStart_ = false;
+        SkipSpaceAndComments();
+        if (ReadNumberValue(value)) {
+            if (c == '-') value = -value;
+            return true;
+        }
+        Restore(sign);
+        return false;
+    } catch (const LexicalError& e) {
+        Report(Severity::Abort, e.where, "%s", e.message.c_str());
+    }
+    return false;  // not reached: Report throws for Abort
+}
+
+bool Lexer::StartsExpression() {
+    try {
+        SkipSpaceAndComments();
+        const char c = At(text_, pos_);
+        if (c == '(') return true;
+        if (c != '-' && c != '+') return AtNumber();
+        const Position sign = Save();
+        ++pos_;
+        atLineStart_ = false;
+        SkipSpaceAndComments();
+        const bool number = AtNumber();
+        Restore(sign);
+        return number;
+    } catch (const LexicalError& e) {
+        Report(Severity::Abort, e.where, "%s", e.message.c_str());
+    }
+    return false;  // not reached: Report throws for Abort
+}
+
+bool Lexer::ReadNumberValue(double& value) {
+    const char c = At(text_, pos_);
+    Token number;
+    if (!(IsDigit(c) || c == '.') || !ReadNumber(number)) return false;
+    atLineStart_ = false;
+    value = number.number;
+    return true;
+}
+
 namespace {
 
 // Appends the run of decimal digits at `p` to `m` (m·10^k + the k digits' value, wrapping
@@ -407,6 +456,12 @@ size_t ScanNumber(const char* s, const char* limit, double& value, bool& exact) 
 }
 
 }  // namespace
+
+bool Lexer::AtNumber() const {
+    // ScanNumber's grammar: a digit, or a point and a digit.
+    const char c = At(text_, pos_);
+    return IsDigit(c) || (c == '.' && IsDigit(At(text_, pos_ + 1)));
+}
 
 bool Lexer::ReadNumber(Token& tok) {
     const char* begin = text_.c_str() + pos_;

@@ -81,7 +81,30 @@ class Lexer {
     // reports it when it reaches it.
     void Lex(Token& tok);
 
+    // ReadLiteral and PeekExpression (expression_parser.h) without making tokens: the same
+    // answers, values and lexical errors (reported) as Next's tokens give them. When the
+    // answer is false, only the blanks, comments and line markers before the next token are
+    // consumed.
+    bool NextLiteral(double& value);
+    bool StartsExpression();
+
   private:
+    // Where the lexer is, to go back to after looking past a sign.
+    struct Position {
+        size_t pos;
+        const std::string* file;
+        int line;
+        bool atLineStart;
+    };
+    Position Save() const { return {pos_, file_, line_, atLineStart_}; }
+    void Restore(const Position& p) {
+        pos_ = p.pos, file_ = p.file, line_ = p.line, atLineStart_ = p.atLineStart;
+    }
+    // Whether a Number token starts at pos_ (after SkipSpaceAndComments).
+    bool AtNumber() const;
+    // Reads the Number token at pos_ into `value`, if one starts there.
+    bool ReadNumberValue(double& value);
+
     void SkipSpaceAndComments();
     void ReadLineMarker();
     size_t MatchFilename(size_t start) const;  // length of the longest name/filename at start
@@ -125,6 +148,9 @@ class TokenStream {
         head_ = (head_ + 1) & (ring_.size() - 1);
         --count_;
     }
+    // The lexer, when ReadLiteral and PeekExpression may ask it directly (NextLiteral,
+    // StartsExpression): no token is buffered and the lexing is done here; else null.
+    Lexer* DirectLexer() { return count_ == 0 && !background_ ? &lexer_ : nullptr; }
     Token Next() {
         if (count_ == 0) Push();
         Token t = std::move(ring_[head_]);

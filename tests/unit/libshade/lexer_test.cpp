@@ -1,5 +1,7 @@
 #include "libshade/lexer.h"
 
+#include "libshade/expression_parser.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -231,6 +233,49 @@ TEST(TokenStream, BackgroundLexingGivesTheSameTokensAndErrors) {
     EXPECT_EQ(ReadStream(bad, true), badHere);
     // Stopping early (a parse error) ends the background thread cleanly.
     { TokenStream s(bad, "big.ray", true); EXPECT_EQ(s.Next().text, "poly"); }
+}
+
+// Reads `text` as the parser reads arguments: whether an expression starts, then a literal
+// if one is there, else a token; one line per step with the answers, values, tokens and
+// locations, and the lexical error's message if any.
+std::vector<std::string> ReadLiterals(const std::string& text, bool background) {
+    std::vector<std::string> out;
+    try {
+        TokenStream s(text, "lit.ray", background);
+        while (true) {
+            std::string step = PeekExpression(s) ? "expr " : "- ";
+            if (double v; ReadLiteral(s, v)) {
+                out.push_back(step + "literal " + std::to_string(v));
+                continue;
+            }
+            const Token t = s.Next();
+            out.push_back(step + std::to_string(static_cast<int>(t.kind)) + " " + std::string(t.text) +
+                          " " + t.Location().file + ":" + std::to_string(t.line));
+            if (t.kind == TokenKind::End) break;
+        }
+    } catch (const FatalError& e) {
+        out.push_back(std::string("error: ") + e.what());
+    }
+    return out;
+}
+
+// The lexer answers ReadLiteral and PeekExpression itself when no token is buffered; a
+// background lexer hands over tokens only, so comparing the two checks that the direct
+// answers, values, consumed text, locations and errors are the tokens' own.
+TEST(TokenStream, DirectLiteralsMatchTheTokens) {
+    const char* const kPieces[] = {"-", "+", "1.5", ".5", "7", "2e3", "(", ")", "x", ".", " ",
+                                   "\n", "/* c\n */", "\n# 5 \"f.ray\"\n", "#", "*", "1e999"};
+    std::mt19937 random(7);
+    std::uniform_int_distribution<size_t> piece(0, std::size(kPieces) - 1), length(1, 12);
+    int literals = 0;
+    for (int i = 0; i < 3000; ++i) {
+        std::string text;
+        for (size_t n = length(random); n > 0; --n) text += kPieces[piece(random)];
+        const std::vector<std::string> direct = ReadLiterals(text, false);
+        EXPECT_EQ(direct, ReadLiterals(text, true)) << text;
+        for (const std::string& step : direct) literals += step.find("literal") != std::string::npos;
+    }
+    EXPECT_GT(literals, 1000);  // literals were read
 }
 
 }  // namespace
