@@ -173,7 +173,7 @@ void Lexer::Fail(const char* format, const std::string& arg) const {
     throw LexicalError{SourceLocation{*file_, line_}, StringPrintf(format, Abbreviate(arg).c_str())};
 }
 
-void Lexer::SkipSpaceAndComments() {
+void Lexer::SkipSpaceAndCommentsSlowly() {
     // Locals, and the NUL after the text ends every run (most of a large scene's characters
     // between tokens are single blanks and newlines).
     const char* text = text_.c_str();

@@ -105,7 +105,19 @@ class Lexer {
     // Reads the Number token at pos_ into `value`, if one starts there.
     bool ReadNumberValue(double& value);
 
-    void SkipSpaceAndComments();
+    // Moves past blanks, newlines, comments and line markers to the next token.
+    void SkipSpaceAndComments() {
+        // Inline for what usually lies between tokens: spaces, then a token's first
+        // character (not a NUL, which may end the text, nor one that may start a comment
+        // or a line marker).
+        const char* text = text_.c_str();
+        size_t p = pos_;
+        while (text[p] == ' ') ++p;
+        pos_ = p;
+        const unsigned char c = static_cast<unsigned char>(text[p]);
+        if (c <= ' ' || c == '/' || c == '#') SkipSpaceAndCommentsSlowly();
+    }
+    void SkipSpaceAndCommentsSlowly();  // the same in general
     void ReadLineMarker();
     size_t MatchFilename(size_t start) const;  // length of the longest name/filename at start
     // Lexes the number at pos_, if one starts there, into tok (kind, text, value) and moves
