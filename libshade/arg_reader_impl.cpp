@@ -70,12 +70,12 @@ bool TokenArgReader::Peek(const char* word) { return Matches(parser_.Tokens().Pe
 
 std::string TokenArgReader::ReadName() {
     if (parser_.Tokens().Peek().kind != TokenKind::Name) FailExpected("a name");
-    return parser_.Tokens().Next().text;
+    return std::string(parser_.Tokens().Next().text);
 }
 
 std::string TokenArgReader::ReadWord() {
     if (!PeekWord()) FailExpected("a name");
-    return parser_.Tokens().Next().text;
+    return std::string(parser_.Tokens().Next().text);
 }
 
 bool TokenArgReader::PeekWord() {
@@ -85,7 +85,7 @@ bool TokenArgReader::PeekWord() {
 
 std::string TokenArgReader::ReadFilename() {
     if (!PeekFilename()) FailExpected("a file name");
-    return parser_.Tokens().Next().text;
+    return std::string(parser_.Tokens().Next().text);
 }
 
 bool TokenArgReader::PeekFilename() {

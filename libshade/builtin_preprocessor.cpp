@@ -209,24 +209,21 @@ constexpr std::array<PlainClass, 256> kPlainClasses = [] {
 // (large scenes are mostly plain). Words here are runs of identifier characters starting
 // with a letter or '_' not preceded by an identifier character, which include every
 // identifier of Tokenize's and some letters of pp-numbers (`1.e5`): seeing more words
-// only sends more texts to the full preprocessor, which decides exactly.
-bool IsPlainText(std::string_view text) {
-    const char* p = text.data();
+// only sends more texts to the full preprocessor, which decides exactly. The NUL that ends a
+// std::string's characters is Special, so it ends every run of plain characters without a
+// bounds check.
+bool IsPlainText(const std::string& text) {
+    const char* p = text.c_str();
     const size_t n = text.size();
     for (size_t i = 0; i < n;) {
-        switch (kPlainClasses[static_cast<unsigned char>(p[i])]) {
-            case PlainClass::Plain:
-                ++i;
-                continue;
-            case PlainClass::Special:
-                return false;
-            case PlainClass::IdentifierStart:
-                break;
-        }
+        while (kPlainClasses[static_cast<unsigned char>(p[i])] == PlainClass::Plain) ++i;
+        if (kPlainClasses[static_cast<unsigned char>(p[i])] == PlainClass::Special)
+            return i == n;  // the NUL after the text, or a special character
+        // p[i] may start an identifier.
         const bool wordStart = i == 0 || !IsIdentifierChar(p[i - 1]);
         size_t j = i + 1;
         while (j < n && IsIdentifierChar(p[j])) ++j;
-        if (wordStart && IsPredefinedByCpp(text.substr(i, j - i))) return false;
+        if (wordStart && IsPredefinedByCpp(std::string_view(p + i, j - i))) return false;
         i = j;
     }
     return true;

@@ -128,17 +128,18 @@ class ExpressionParser {
 
     ExprPtr NameOrCall() {
         Token name = tokens_.Next();
-        const Symbol* s = symbols_.Find(name.text);
+        const std::string spelling(name.text);
+        const Symbol* s = symbols_.Find(spelling);
         bool call = tokens_.Peek().IsChar('(');
         if (!s)
             Fail(name, "Undefined " + std::string(call ? "function" : "variable") + " '" +
-                           name.text + "'");
+                           spelling + "'");
         if (!call) {
             if (s->kind == Symbol::Kind::Function)
-                Fail(name, "'" + name.text + "' is a function; it needs arguments");
+                Fail(name, "'" + spelling + "' is a function; it needs arguments");
             return s->value;
         }
-        if (s->kind != Symbol::Kind::Function) Fail(name, "'" + name.text + "' is not a function");
+        if (s->kind != Symbol::Kind::Function) Fail(name, "'" + spelling + "' is not a function");
         Nest guard(*this);
         tokens_.Next();  // '('
         std::vector<ExprPtr> args{Sum()};
@@ -148,7 +149,7 @@ class ExpressionParser {
         }
         Expect(')');
         if (static_cast<int>(args.size()) != s->arity) {
-            Fail(name, StringPrintf("Function '%s' takes %d argument%s, not %zu", name.text.c_str(),
+            Fail(name, StringPrintf("Function '%s' takes %d argument%s, not %zu", spelling.c_str(),
                                     s->arity, s->arity == 1 ? "" : "s", args.size()));
         }
         ExprPtr e;
@@ -170,6 +171,7 @@ class ExpressionParser {
 }  // namespace
 
 bool ReadLiteral(TokenStream& tokens, double& value) {
+    if (Lexer* lexer = tokens.DirectLexer()) return lexer->NextLiteral(value);
     const Token& t = tokens.Peek();
     if (t.kind == TokenKind::Number) {
         value = t.number;
@@ -188,6 +190,7 @@ bool ReadLiteral(TokenStream& tokens, double& value) {
 }
 
 bool PeekExpression(TokenStream& tokens) {
+    if (Lexer* lexer = tokens.DirectLexer()) return lexer->StartsExpression();
     const Token& t = tokens.Peek();
     if (t.kind == TokenKind::Number || t.IsChar('(')) return true;
     return (t.IsChar('-') || t.IsChar('+')) && tokens.Peek(1).kind == TokenKind::Number;

@@ -1,5 +1,7 @@
 #include "libshade/lexer.h"
 
+#include <array>
+#include <bit>
 #include <charconv>
 #include <condition_variable>
 #include <deque>
@@ -9,9 +11,9 @@
 #include <cstdint>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <string_view>
 #include <mutex>
-#include <unordered_map>
 #include <unordered_set>
 
 namespace rs {
@@ -27,46 +29,90 @@ constexpr Synonym kSynonyms[] = {{"polygon", "poly"},       {"reflective", "refl
                                  {"transparent", "transp"}, {"translucency", "translu"},
                                  {"resolution", "screen"},  {"samples", "sample"}};
 
-// Spec §1.3: every keyword, mapped to its canonical spelling, plus `implicit`, our
-// Implicit Patches primitive (libray/libobj/implicit/README.md), and `patches`, its debug
-// texture (libray/libtext/patches_texture.h). Synonyms map to the spelling
-// the grammar uses; `samples` (the quick reference's spelling) is accepted for `sample`.
-// Keys and values view string literals, so a lookup builds no string.
-const std::unordered_map<std::string_view, std::string_view>& KeywordTable() {
-    static const std::unordered_map<std::string_view, std::string_view> table = [] {
-        std::unordered_map<std::string_view, std::string_view> t;
-        const char* words[] = {
-            "ambient",     "aperture",    "applysurf",    "area",      "atmosphere", "background",
-            "blob",        "blotch",      "body",         "box",       "bump",       "checker",
-            "cloud",       "component",   "cone",         "contrast",  "crop",       "cursurf",
-            "cutoff",      "cylinder",    "cylindrical",  "define",    "diffuse",    "difference",
-            "directional", "disc",        "end",          "extended",  "extinct",    "eyep",
-            "eyesep",      "fbm",         "fbmbump",      "filter",    "focaldist",  "fog",
-            "fogdeck",     "fov",         "framelength",  "frames",    "gauss",      "gloss",
-            "grid",        "heightfield", "image",        "implicit",  "index",      "intersect",
-            "jitter",      "patches",
-            "light",       "list",        "lookp",        "map",       "marble",     "maxdepth",
-            "mist",        "mount",       "name",         "nojitter",  "noshadow",   "object",
-            "outfile",     "planar",      "plane",        "point",     "poly",       "print",
-            "quiet",       "range",       "reflect",      "report",    "rotate",     "sample",
-            "scale",       "screen",      "shadowtransp", "shutter",   "sky",        "smooth",
-            "specpow",     "specular",    "sphere",       "spherical", "spot",       "starttime",
-            "stripe",      "surface",     "textsurf",     "texture",   "tile",       "torus",
-            "transform",   "translate",   "translu",      "transp",    "triangle",   "triangleuv",
-            "union",       "up",          "uv",           "verbose",   "window",     "windy",
-            "wood"};
-        for (const char* w : words) t.emplace(w, w);
-        for (const Synonym& s : kSynonyms) t.emplace(s.word, s.keyword);
-        return t;
-    }();
-    return table;
-}
+// Spec §1.3: every keyword in its canonical spelling, plus `implicit`, our Implicit Patches
+// primitive (libray/libobj/implicit/README.md), and `patches`, its debug texture
+// (libray/libtext/patches_texture.h). Synonyms (kSynonyms) map to the spelling the grammar
+// uses; `samples` (the quick reference's spelling) is accepted for `sample`.
+constexpr std::string_view kKeywords[] = {
+    "ambient",     "aperture",    "applysurf",    "area",      "atmosphere", "background",
+    "blob",        "blotch",      "body",         "box",       "bump",       "checker",
+    "cloud",       "component",   "cone",         "contrast",  "crop",       "cursurf",
+    "cutoff",      "cylinder",    "cylindrical",  "define",    "diffuse",    "difference",
+    "directional", "disc",        "end",          "extended",  "extinct",    "eyep",
+    "eyesep",      "fbm",         "fbmbump",      "filter",    "focaldist",  "fog",
+    "fogdeck",     "fov",         "framelength",  "frames",    "gauss",      "gloss",
+    "grid",        "heightfield", "image",        "implicit",  "index",      "intersect",
+    "jitter",      "patches",
+    "light",       "list",        "lookp",        "map",       "marble",     "maxdepth",
+    "mist",        "mount",       "name",         "nojitter",  "noshadow",   "object",
+    "outfile",     "planar",      "plane",        "point",     "poly",       "print",
+    "quiet",       "range",       "reflect",      "report",    "rotate",     "sample",
+    "scale",       "screen",      "shadowtransp", "shutter",   "sky",        "smooth",
+    "specpow",     "specular",    "sphere",       "spherical", "spot",       "starttime",
+    "stripe",      "surface",     "textsurf",     "texture",   "tile",       "torus",
+    "transform",   "translate",   "translu",      "transp",    "triangle",   "triangleuv",
+    "union",       "up",          "uv",           "verbose",   "window",     "windy",
+    "wood"};
+
+constexpr bool kKeywordsFitTheIndex = [] {  // lower-case and shorter than 16 characters
+    for (std::string_view k : kKeywords)
+        if (k.empty() || k.size() >= 16 || k[0] < 'a' || k[0] > 'z') return false;
+    for (const Synonym& s : kSynonyms)
+        if (s.word.empty() || s.word.size() >= 16 || s.word[0] < 'a' || s.word[0] > 'z') return false;
+    return true;
+}();
+static_assert(kKeywordsFitTheIndex);
+
+// The keywords and synonyms (as Synonym: spelling, canonical keyword) grouped by first
+// letter and length, so that a lookup (one per name a scene spells) compares a word with
+// the few spellings of its group and hashes nothing.
+class KeywordIndex {
+  public:
+    KeywordIndex() {
+        std::vector<Synonym> all;
+        for (std::string_view k : kKeywords) all.push_back({k, k});
+        for (const Synonym& s : kSynonyms) all.push_back(s);
+        for (const Synonym& s : all) ++groups_[Group(s.word)].count;  // every word has a group
+        uint16_t start = 0;
+        for (Range& g : groups_) {
+            g.start = start;
+            start = static_cast<uint16_t>(start + g.count);
+        }
+        entries_.resize(all.size());
+        std::array<uint16_t, kGroups> filled{};
+        for (const Synonym& s : all) {
+            const size_t g = Group(s.word);
+            entries_[groups_[g].start + filled[g]++] = s;
+        }
+    }
+
+    // The canonical spelling of keyword `word`, or an empty view.
+    std::string_view Find(std::string_view word) const {
+        if (word.empty() || word.size() >= kLengths || word[0] < 'a' || word[0] > 'z') return {};
+        const Range& g = groups_[Group(word)];
+        for (uint16_t i = g.start; i < g.start + g.count; ++i)
+            if (entries_[i].word == word) return entries_[i].keyword;
+        return {};
+    }
+
+  private:
+    static constexpr size_t kLengths = 16;  // longer words are no keywords
+    static constexpr size_t kGroups = 26 * kLengths;
+    // `word` starts with a lower-case letter and is shorter than kLengths.
+    static size_t Group(std::string_view word) {
+        return static_cast<size_t>(word[0] - 'a') * kLengths + word.size();
+    }
+    struct Range {
+        uint16_t start = 0, count = 0;
+    };
+    std::array<Range, kGroups> groups_{};
+    std::vector<Synonym> entries_;  // by group
+};
 
 // The canonical spelling of keyword `word`, or an empty view.
 std::string_view FindKeyword(std::string_view word) {
-    static const auto& table = KeywordTable();
-    auto it = table.find(word);
-    return it == table.end() ? std::string_view() : it->second;
+    static const KeywordIndex index;
+    return index.Find(word);
 }
 
 bool IsLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
@@ -102,14 +148,15 @@ std::string Token::Describe() const {
         case TokenKind::Char: {
             unsigned char c = static_cast<unsigned char>(text[0]);
             if (c < 32 || c >= 127) return StringPrintf("character 0x%02x", c);
-            return "'" + text + "'";
+            break;
         }
         default:
-            std::string quoted = "'";  // built by appending: gcc 12's -Wrestrict misreads
-            quoted += Abbreviate(text);  // "'" + std::string&& here
-            quoted += '\'';
-            return quoted;
+            break;
     }
+    std::string quoted = "'";  // built by appending: gcc 12's -Wrestrict misreads
+    quoted += Abbreviate(std::string(text));  // "'" + std::string&& here
+    quoted += '\'';
+    return quoted;
 }
 
 Lexer::Lexer(std::string text, std::string fileName)
@@ -126,22 +173,24 @@ void Lexer::Fail(const char* format, const std::string& arg) const {
     throw LexicalError{SourceLocation{*file_, line_}, StringPrintf(format, Abbreviate(arg).c_str())};
 }
 
-void Lexer::SkipSpaceAndComments() {
-    while (pos_ < text_.size()) {
-        // Runs of blanks first, in locals (most of a large scene's characters between tokens).
-        const char* text = text_.data();
+void Lexer::SkipSpaceAndCommentsSlowly() {
+    // Locals, and the NUL after the text ends every run (most of a large scene's characters
+    // between tokens are single blanks and newlines).
+    const char* text = text_.c_str();
+    const size_t size = text_.size();
+    while (true) {
         size_t p = pos_;
-        while (IsBlank(text[p])) ++p;  // the NUL after the text ends the run
-        pos_ = p;
-        if (pos_ >= text_.size()) return;
-        char c = text_[pos_];
-        if (c == '\n') {
+        while (IsBlank(text[p])) ++p;
+        if (text[p] == '\n') {
             ++line_;
-            ++pos_;
+            pos_ = p + 1;
             atLineStart_ = true;
-        } else if (IsBlank(c)) {
-            ++pos_;
-        } else if (c == '/' && At(text_, pos_ + 1) == '*') {
+            continue;
+        }
+        pos_ = p;
+        if (p >= size) return;
+        const char c = text[p];
+        if (c == '/' && text[p + 1] == '*') {
             int startLine = line_;
             size_t end = text_.find("*/", pos_ + 2);
             if (end == std::string::npos) {
@@ -241,8 +290,8 @@ void Lexer::Next(Token& tok) {
 void Lexer::Lex(Token& tok) {
     SkipSpaceAndComments();
     tok.kind = TokenKind::End;
-    tok.text.clear();
-    tok.keyword.clear();
+    tok.text = {};
+    tok.keyword = {};
     tok.number = 0;
     tok.file = file_;
     tok.line = line_;
@@ -253,16 +302,16 @@ void Lexer::Lex(Token& tok) {
     if ((IsDigit(c) || c == '.') && ReadNumber(tok)) return;
     if (IsLetter(c) || c == '/' || c == '.') {
         if (size_t n = MatchFilename(pos_); n > 0) {
-            tok.text.assign(text_, pos_, n);
+            tok.text = std::string_view(text_).substr(pos_, n);
             pos_ += n;
             if (n > kMaxNameLength)
                 Fail(StringPrintf("Name longer than %zu characters: %%s", kMaxNameLength).c_str(),
-                     tok.text);
-            if (tok.text.find('/') != std::string::npos) {
+                     std::string(tok.text));
+            if (tok.text.find('/') != std::string_view::npos) {
                 tok.kind = TokenKind::Filename;
             } else if (std::string_view k = FindKeyword(tok.text); !k.empty()) {
                 tok.kind = TokenKind::Keyword;
-                tok.keyword.assign(k);
+                tok.keyword = k;
             } else {
                 tok.kind = TokenKind::Name;
             }
@@ -270,31 +319,115 @@ void Lexer::Lex(Token& tok) {
         }
     }
     tok.kind = TokenKind::Char;
-    tok.text.assign(1, c);
+    tok.text = std::string_view(text_).substr(pos_, 1);
     ++pos_;
+}
+
+bool Lexer::NextLiteral(double& value) {
+    try {
+        SkipSpaceAndComments();
+        const char c = At(text_, pos_);
+        if (c != '-' && c != '+') return ReadNumberValue(value);
+        const Position sign = Save();
+        ++pos_;
+        atLineStart_ = false;
+        SkipSpaceAndComments();
+        if (ReadNumberValue(value)) {
+            if (c == '-') value = -value;
+            return true;
+        }
+        Restore(sign);
+        return false;
+    } catch (const LexicalError& e) {
+        Report(Severity::Abort, e.where, "%s", e.message.c_str());
+    }
+    return false;  // not reached: Report throws for Abort
+}
+
+bool Lexer::StartsExpression() {
+    try {
+        SkipSpaceAndComments();
+        const char c = At(text_, pos_);
+        if (c == '(') return true;
+        if (c != '-' && c != '+') return AtNumber();
+        const Position sign = Save();
+        ++pos_;
+        atLineStart_ = false;
+        SkipSpaceAndComments();
+        const bool number = AtNumber();
+        Restore(sign);
+        return number;
+    } catch (const LexicalError& e) {
+        Report(Severity::Abort, e.where, "%s", e.message.c_str());
+    }
+    return false;  // not reached: Report throws for Abort
+}
+
+bool Lexer::ReadNumberValue(double& value) {
+    const char c = At(text_, pos_);
+    Token number;
+    if (!(IsDigit(c) || c == '.') || !ReadNumber(number)) return false;
+    atLineStart_ = false;
+    value = number.number;
+    return true;
 }
 
 namespace {
 
+// Appends the run of decimal digits at `p` to `m` (m·10^k + the k digits' value, wrapping
+// modulo 2^64) and returns the end of the run. Reads no byte at or past `limit` other than
+// the NUL there, which ends the run. Eight bytes at a time while eight remain before
+// `limit`: their values less '0' are digits exactly up to the first byte that is not one
+// (a borrow only moves to later bytes), and the leading digits, moved to the high end as
+// if led by zeros, are combined by pairs, fours and eights in three multiplications (on
+// little-endian machines; elsewhere one byte at a time).
+inline __attribute__((always_inline)) const char* ScanDigits(const char* p, const char* limit,
+                                                             uint64_t& m) {
+    static constexpr uint64_t kPowersOfTen[] = {1,      10,      100,      1000,     10000,
+                                                100000, 1000000, 10000000, 100000000};
+    constexpr uint64_t kOnes = 0x0101010101010101;
+    while (std::endian::native == std::endian::little && limit - p >= 8) {
+        uint64_t chunk;
+        std::memcpy(&chunk, p, 8);
+        const uint64_t values = chunk - '0' * kOnes;  // little-endian: byte i is p[i] - '0'
+        // High bit of byte i: p[i] is no digit (its value is above 9), for bytes up to the
+        // first such one.
+        const uint64_t notDigit = ((values + 0x76 * kOnes) | values) & (0x80 * kOnes);
+        const int count = notDigit == 0 ? 8 : std::countr_zero(notDigit) / 8;
+        if (count > 0) {
+            uint64_t v = values << (8 * (8 - count));  // the digits, led by 8 - count zeros
+            v = v * 10 + (v >> 8);  // byte 2i (i < 4): the value of digits 2i, 2i + 1
+            v = ((v & 0x000000FF000000FF) * (100 + (uint64_t{1000000} << 32)) +
+                 ((v >> 16) & 0x000000FF000000FF) * (1 + (uint64_t{10000} << 32))) >>
+                32;
+            m = m * kPowersOfTen[count] + v;
+        }
+        p += count;
+        if (count < 8) return p;
+    }
+    for (; IsDigit(*p); ++p) m = m * 10 + static_cast<uint64_t>(*p - '0');
+    return p;
+}
+
 // The number at `s` (D+ | D+ . D* [E] | D* . D+ [E] | D+ E with E = [eE][+-]?D+): returns
-// its length, 0 when none starts there. `s` must be NUL-terminated (the NUL ends any number).
+// its length, 0 when none starts there. The text must end with a NUL at `limit` (which ends
+// any number).
 // Reads its value on the way by Clinger's fast path: when the digits make an integer
 // m <= 2^53 and the power of ten 10^e has |e| <= 22, both are exact doubles and one
 // multiplication or division rounds m·10^e correctly, as from_chars does; `exact` says
 // whether `value` was set so.
-size_t ScanNumber(const char* s, double& value, bool& exact) {
+size_t ScanNumber(const char* s, const char* limit, double& value, bool& exact) {
     constexpr uint64_t kMaxExact = uint64_t{1} << 53;
     static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                               1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                               1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
     const char* p = s;
     uint64_t m = 0;  // the digits (wrapping when more than 19, then unused)
-    for (; IsDigit(*p); ++p) m = m * 10 + static_cast<uint64_t>(*p - '0');
+    for (; IsDigit(*p); ++p) m = m * 10 + static_cast<uint64_t>(*p - '0');  // mostly one digit
     const long intDigits = p - s;
     long fracDigits = 0;
     if (*p == '.') {
-        const char* q = p + 1;
-        for (; IsDigit(*q); ++q) m = m * 10 + static_cast<uint64_t>(*q - '0');
+        const char* q = ScanDigits(p + 1, limit, m);
         fracDigits = q - p - 1;
         p = q;
     }
@@ -324,21 +457,28 @@ size_t ScanNumber(const char* s, double& value, bool& exact) {
 
 }  // namespace
 
+bool Lexer::AtNumber() const {
+    // ScanNumber's grammar: a digit, or a point and a digit.
+    const char c = At(text_, pos_);
+    return IsDigit(c) || (c == '.' && IsDigit(At(text_, pos_ + 1)));
+}
+
 bool Lexer::ReadNumber(Token& tok) {
     const char* begin = text_.c_str() + pos_;
     bool exact = false;
-    const size_t n = ScanNumber(begin, tok.number, exact);
+    const size_t n = ScanNumber(begin, text_.c_str() + text_.size(), tok.number, exact);
     if (n == 0) return false;
     const char* end = begin + n;
     tok.kind = TokenKind::Number;
-    tok.text.assign(begin, n);
+    tok.text = std::string_view(begin, n);
     pos_ += n;
     if (exact) return true;
     // from_chars and strtod both round correctly; strtod settles what from_chars leaves
     // (out of range: infinity, zero or a subnormal, as before).
+    const std::string spelling(tok.text);
     if (auto [stop, error] = std::from_chars(begin, end, tok.number); error != std::errc() || stop != end)
-        tok.number = std::strtod(tok.text.c_str(), nullptr);
-    if (!std::isfinite(tok.number)) Fail("Number out of range: %s", tok.text);
+        tok.number = std::strtod(spelling.c_str(), nullptr);
+    if (!std::isfinite(tok.number)) Fail("Number out of range: %s", spelling);
     return true;
 }
 

@@ -29,10 +29,12 @@ enum class TokenKind {
     Char,      // any other single character, in `text`
 };
 
+// A token views its spelling in the lexer's text, so it is valid while the Lexer (or the
+// TokenStream) that made it lives; copying one copies no characters.
 struct Token {
     TokenKind kind = TokenKind::End;
-    std::string text;     // the spelling as written
-    std::string keyword;  // canonical keyword (Keyword tokens only)
+    std::string_view text;     // the spelling as written (in the lexer's text)
+    std::string_view keyword;  // canonical keyword (Keyword tokens only; a static string)
     double number = 0;
     // Where the token starts: the file name, interned for the whole process (InternFileName;
     // null only in a default-constructed Token), and the line.
@@ -72,16 +74,50 @@ class Lexer {
     Lexer(std::string text, std::string fileName);
 
     Token Next();
-    // The same into `tok`, reusing its strings' storage (the token stream's ring lexes into
-    // its slots this way, so large scenes allocate nothing per token).
+    // The same into `tok`.
     void Next(Token& tok);
     // The same, throwing a lexical error as LexicalError instead of reporting it: a lexer
     // running ahead on another thread hands the error to the parser's thread, which
     // reports it when it reaches it.
     void Lex(Token& tok);
 
+    // ReadLiteral and PeekExpression (expression_parser.h) without making tokens: the same
+    // answers, values and lexical errors (reported) as Next's tokens give them. When the
+    // answer is false, only the blanks, comments and line markers before the next token are
+    // consumed.
+    bool NextLiteral(double& value);
+    bool StartsExpression();
+
   private:
-    void SkipSpaceAndComments();
+    // Where the lexer is, to go back to after looking past a sign.
+    struct Position {
+        size_t pos;
+        const std::string* file;
+        int line;
+        bool atLineStart;
+    };
+    Position Save() const { return {pos_, file_, line_, atLineStart_}; }
+    void Restore(const Position& p) {
+        pos_ = p.pos, file_ = p.file, line_ = p.line, atLineStart_ = p.atLineStart;
+    }
+    // Whether a Number token starts at pos_ (after SkipSpaceAndComments).
+    bool AtNumber() const;
+    // Reads the Number token at pos_ into `value`, if one starts there.
+    bool ReadNumberValue(double& value);
+
+    // Moves past blanks, newlines, comments and line markers to the next token.
+    void SkipSpaceAndComments() {
+        // Inline for what usually lies between tokens: spaces, then a token's first
+        // character (not a NUL, which may end the text, nor one that may start a comment
+        // or a line marker).
+        const char* text = text_.c_str();
+        size_t p = pos_;
+        while (text[p] == ' ') ++p;
+        pos_ = p;
+        const unsigned char c = static_cast<unsigned char>(text[p]);
+        if (c <= ' ' || c == '/' || c == '#') SkipSpaceAndCommentsSlowly();
+    }
+    void SkipSpaceAndCommentsSlowly();  // the same in general
     void ReadLineMarker();
     size_t MatchFilename(size_t start) const;  // length of the longest name/filename at start
     // Lexes the number at pos_, if one starts there, into tok (kind, text, value) and moves
@@ -99,7 +135,7 @@ class Lexer {
 class BackgroundLexer;
 
 // A lexer with arbitrary lookahead, buffered in a ring that is reused (no allocation per
-// token).
+// token). Its tokens view its text: they are valid while the stream lives.
 class TokenStream {
   public:
     // With `background`, a second thread lexes ahead while the parser reads (for large
@@ -124,6 +160,9 @@ class TokenStream {
         head_ = (head_ + 1) & (ring_.size() - 1);
         --count_;
     }
+    // The lexer, when ReadLiteral and PeekExpression may ask it directly (NextLiteral,
+    // StartsExpression): no token is buffered and the lexing is done here; else null.
+    Lexer* DirectLexer() { return count_ == 0 && !background_ ? &lexer_ : nullptr; }
     Token Next() {
         if (count_ == 0) Push();
         Token t = std::move(ring_[head_]);

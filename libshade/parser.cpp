@@ -64,6 +64,15 @@ bool LexInBackground(size_t bytes, const RenderOptions& options) {
     return threads > 1 && bytes >= kMinBytes;
 }
 
+// Hashes std::string keys and std::string_view lookups alike, so that a token's spelling
+// finds its entry without being copied into a string.
+struct NameHash {
+    using is_transparent = void;
+    size_t operator()(std::string_view name) const { return std::hash<std::string_view>()(name); }
+};
+template <class Value>
+using NameMap = std::unordered_map<std::string, Value, NameHash, std::equal_to<>>;
+
 enum class TransformKind { Translate, Scale, Rotate, General };
 
 // The transform for already evaluated parameters, or nothing when they are invalid.
@@ -131,7 +140,8 @@ class Parser final : public ParserServices {
     void ParseSurfaceDefinition();
 
     std::shared_ptr<Object> ParseInstance();
-    std::shared_ptr<Object> ParsePrimitive();
+    // `row`: the primitive the next token names.
+    std::shared_ptr<Object> ParsePrimitive(const PrimitiveEntry& row);
     std::shared_ptr<Object> ParseAggregate();
     std::shared_ptr<Object> ParseObjectReference();
     void ParseTransforms(TransformList& list);
@@ -149,7 +159,7 @@ class Parser final : public ParserServices {
         std::shared_ptr<const Surface> current;  // set by applysurf; null: none
     };
     std::vector<Scope> scopes_;
-    std::unordered_map<std::string, std::shared_ptr<const Surface>> surfaces_;
+    NameMap<std::shared_ptr<const Surface>> surfaces_;
     // Named objects; a null entry is a name whose definition was discarded (already warned).
     std::unordered_map<std::string, std::shared_ptr<Object>> objects_;
     std::unordered_map<const Object*, NodeDepth> depths_;
@@ -214,7 +224,7 @@ bool Parser::ParseScopedItem(std::vector<std::shared_ptr<Object>>& into) {
 bool Parser::ParseCameraItem() {
     const Token& t = tokens_.Peek();
     if (t.kind != TokenKind::Keyword) return false;
-    const std::string k = t.keyword;
+    const std::string_view k = t.keyword;
     Camera& cam = scene_.camera;
     RenderOptions& opt = scene_.options;
     if (k == "eyep") {
@@ -284,7 +294,7 @@ bool Parser::ParseCameraItem() {
 bool Parser::ParseOptionItem() {
     const Token& t = tokens_.Peek();
     if (t.kind != TokenKind::Keyword) return false;
-    const std::string k = t.keyword;
+    const std::string_view k = t.keyword;
     RenderOptions& opt = scene_.options;
     if (k == "sample") {
         Token kw = tokens_.Next();
@@ -485,8 +495,8 @@ void Parser::ParseDefine() {
     Token name = tokens_.Peek();
     args.ReadName();
     ExprPtr value = args.ReadExpression();
-    if (!symbols_.Define(name.text, value))
-        FailAt(name.Location(), "", "'" + name.text + "' is already defined");
+    if (!symbols_.Define(std::string(name.text), value))
+        FailAt(name.Location(), "", "'" + std::string(name.text) + "' is already defined");
 }
 
 void Parser::ParsePrint() {
@@ -513,7 +523,7 @@ std::shared_ptr<const Surface> Parser::ParseSurface(std::string_view usage) {
     } else if (first.kind == TokenKind::Name) {
         auto it = surfaces_.find(first.text);
         if (it == surfaces_.end())
-            FailAt(first.Location(), "", "Undefined surface '" + first.text + "'");
+            FailAt(first.Location(), "", "Undefined surface '" + std::string(first.text) + "'");
         tokens_.Skip();
         if (!IsSurfaceAttribute(tokens_.Peek())) return it->second;
         base = *it->second;
@@ -529,7 +539,7 @@ std::shared_ptr<const Surface> Parser::ParseSurface(std::string_view usage) {
 
 void Parser::ParseSurfaceAttribute(TokenArgReader& args, Surface& s) {
     Token k = tokens_.Next();
-    const std::string& a = k.keyword;
+    const std::string_view a = k.keyword;
     if (a == "ambient")
         s.ambient = args.ReadColor();
     else if (a == "diffuse")
@@ -576,8 +586,9 @@ void Parser::ParseSurfaceDefinition() {
 std::shared_ptr<Object> Parser::ParseInstance() {
     const Token& t = tokens_.Peek();
     std::shared_ptr<Object> node;
-    if (t.kind == TokenKind::Keyword && IsPrimitiveKeyword(t.keyword)) {
-        node = ParsePrimitive();
+    const PrimitiveEntry* primitive = t.kind == TokenKind::Keyword ? FindPrimitive(t.keyword) : nullptr;
+    if (primitive) {
+        node = ParsePrimitive(*primitive);
     } else if (t.kind == TokenKind::Keyword && IsAggregateKeyword(t.keyword)) {
         node = ParseAggregate();
     } else if (t.IsKeyword("object")) {
@@ -596,10 +607,8 @@ std::shared_ptr<Object> Parser::ParseInstance() {
     return node;
 }
 
-std::shared_ptr<Object> Parser::ParsePrimitive() {
+std::shared_ptr<Object> Parser::ParsePrimitive(const PrimitiveEntry& row) {
     Token kw = tokens_.Next();
-    const PrimitiveEntry* row = FindPrimitive(kw.keyword);
-    if (!row) FailAt(kw.Location(), "", "The '" + kw.keyword + "' primitive is not supported yet");
     std::shared_ptr<const Surface> surface;
     bool surfaceFollows = PeekSurfaceStart();
     // heightfield's own argument is a file name, which may lex as a NAME too: a NAME is the
@@ -608,12 +617,12 @@ std::shared_ptr<Object> Parser::ParsePrimitive() {
         TokenKind after = tokens_.Peek(1).kind;
         surfaceFollows = after == TokenKind::Name || after == TokenKind::Filename;
     }
-    if (surfaceFollows && row->startsArguments && tokens_.Peek().kind == TokenKind::Name &&
-        row->startsArguments(tokens_.Peek().text))
+    if (surfaceFollows && row.startsArguments && tokens_.Peek().kind == TokenKind::Name &&
+        row.startsArguments(std::string(tokens_.Peek().text)))
         surfaceFollows = false;
-    if (surfaceFollows) surface = ParseSurface(row->usage);
-    TokenArgReader args(*this, kw, row->usage);
-    std::shared_ptr<Primitive> prim = row->create(args);
+    if (surfaceFollows) surface = ParseSurface(row.usage);
+    TokenArgReader args(*this, kw, row.usage);
+    std::shared_ptr<Primitive> prim = row.create(args);
     if (!prim) return nullptr;  // degenerate: the factory has warned
     std::shared_ptr<Object> node = Object::MakePrimitive(std::move(prim));
     // Spec §3.5 quirk: a height field without its own surface ignores applysurf.
@@ -627,7 +636,7 @@ std::shared_ptr<Object> Parser::ParsePrimitive() {
 
 std::shared_ptr<Object> Parser::ParseAggregate() {
     Token kw = tokens_.Next();
-    const std::string& k = kw.keyword;
+    const std::string k(kw.keyword);
     const char* usage =
         k == "grid" ? "grid nx ny nz {object} end" : "list|union|intersect|difference {object} end";
     TokenArgReader args = Args(kw, usage);
@@ -643,10 +652,11 @@ std::shared_ptr<Object> Parser::ParseAggregate() {
     while (!tokens_.Peek().IsKeyword("end")) {
         const Token& t = tokens_.Peek();
         if (t.kind == TokenKind::End) args.Fail("Missing 'end' for this '" + k + "'");
+        if (ParseScopedItem(children)) continue;
+        // (None of these starts a scoped item.)
         if (t.kind == TokenKind::Keyword && IsTopLevelOnly(t.keyword))
-            FailAt(t.Location(), "", "'" + t.text + "' is not allowed inside an aggregate");
-        if (!ParseScopedItem(children))
-            FailAt(t.Location(), "", "Expected an object or 'end', found " + t.Describe());
+            FailAt(t.Location(), "", "'" + std::string(t.text) + "' is not allowed inside an aggregate");
+        FailAt(t.Location(), "", "Expected an object or 'end', found " + t.Describe());
     }
     tokens_.Next();
     scopes_.pop_back();
@@ -779,7 +789,7 @@ void Parser::ParseTransforms(TransformList& list) {
 }
 
 std::shared_ptr<Texture> Parser::ParseTexture() {
-    Token kw = tokens_.Next();
+    tokens_.Skip();  // `texture`
     const Token& type = tokens_.Peek();
     const TextureEntry* row = nullptr;
     if (type.kind == TokenKind::Keyword) {

@@ -40,12 +40,18 @@ Polygon::Polygon(const std::vector<Vec3>& vertices, bool flip) {
         axisU_ = 0;
         axisV_ = 1;
     }
-    projected_.reserve(2 * vertices.size());
-    for (const Vec3& v : vertices) {
-        projected_.push_back(v[axisU_]);
-        projected_.push_back(v[axisV_]);
+    vertexCount_ = vertices.size();
+    double* projected = inlineProjected_;
+    if (vertexCount_ > kInlineVertices) {
+        heapProjected_ = std::make_unique<double[]>(2 * vertexCount_);
+        projected = heapProjected_.get();
     }
-    if (vertices.size() > kBandedEdges) BuildBands();
+    for (size_t i = 0; i < vertexCount_; ++i) {
+        projected[2 * i] = vertices[i][axisU_];
+        projected[2 * i + 1] = vertices[i][axisV_];
+    }
+    projected_ = projected;
+    if (vertexCount_ > kBandedEdges) BuildBands();
 }
 
 int Polygon::Band(double v) const {
@@ -57,7 +63,7 @@ int Polygon::Band(double v) const {
 }
 
 void Polygon::BuildBands() {
-    const size_t count = projected_.size() / 2;
+    const size_t count = vertexCount_;
     bandLo_ = bandHi_ = projected_[1];
     for (size_t i = 0; i < count; ++i) {
         bandLo_ = std::min(bandLo_, projected_[2 * i + 1]);
@@ -91,7 +97,7 @@ void Polygon::BuildBands() {
 inline int Polygon::Crossing(size_t e, double pu, double pv) const {
     // Upward crossings of the horizontal line through the point that pass to its right
     // count +1, downward ones passing to its left −1.
-    const size_t count = projected_.size() / 2;
+    const size_t count = vertexCount_;
     const size_t j = e == 0 ? count - 1 : e - 1;
     const double u0 = projected_[2 * j], v0 = projected_[2 * j + 1];
     const double u1 = projected_[2 * e], v1 = projected_[2 * e + 1];
@@ -127,8 +133,7 @@ bool Polygon::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& 
     // bands, only the edges of the point's band can cross (none outside the v range).
     int winding = 0;
     if (bandCount_ == 0) {
-        const size_t count = projected_.size() / 2;
-        for (size_t e = 0; e < count; ++e) winding += Crossing(e, pu, pv);
+        for (size_t e = 0; e < vertexCount_; ++e) winding += Crossing(e, pu, pv);
     } else {
         if (!(pv >= bandLo_ && pv < bandHi_)) return false;
         const int b = Band(pv);

@@ -16,6 +16,8 @@ class Polygon final : public Primitive {
   public:
     // Requires ≥ 3 vertices and a non-zero Newell normal (NewellNormal).
     Polygon(const std::vector<Vec3>& vertices, bool flip);
+    Polygon(const Polygon&) = delete;  // projected_ may point into the object itself
+    Polygon& operator=(const Polygon&) = delete;
     // Reads vectors while a number follows. Fewer than 3: args.Fail; a zero Newell normal
     // (no area): warning, nullptr.
     static std::shared_ptr<Primitive> Create(ArgReader& args);
@@ -35,9 +37,15 @@ class Polygon final : public Primitive {
     double offset_;  // normal·(vertex centroid)
     // The vertices projected by dropping the normal's dominant axis: coordinates axisU_,
     // axisV_ of vertex i at projected_[2i], projected_[2i + 1], used for the winding-number
-    // test (the vertices themselves are not kept).
+    // test (the vertices themselves are not kept). Outlines of up to kInlineVertices
+    // vertices (triangles and quadrilaterals: most polygons of large scenes) are kept in
+    // the object, longer ones on the heap, so most polygons cost one allocation.
+    static constexpr size_t kInlineVertices = 4;
     int axisU_, axisV_;
-    std::vector<double> projected_;
+    size_t vertexCount_;
+    const double* projected_;  // inlineProjected_ or heapProjected_
+    double inlineProjected_[2 * kInlineVertices];
+    std::unique_ptr<double[]> heapProjected_;
     Bounds3 bounds_;
 
     // Outlines of more than kBandedEdges edges (gear faces: 144) are cut into horizontal

@@ -25,7 +25,7 @@ std::vector<std::string> Tokens(const std::string& text, const std::string& file
     try {
         Lexer lexer(text, file);
         for (Token t = lexer.Next(); t.kind != TokenKind::End; t = lexer.Next())
-            out.push_back(std::to_string(static_cast<int>(t.kind)) + " " + t.text + " @" +
+            out.push_back(std::to_string(static_cast<int>(t.kind)) + " " + std::string(t.text) + " @" +
                           t.Location().file + ":" + std::to_string(t.Location().line));
     } catch (const FatalError& e) {
         out.push_back(std::string("error: ") + e.what());

@@ -1,9 +1,12 @@
 #include "libshade/lexer.h"
 
+#include "libshade/expression_parser.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -11,8 +14,11 @@
 namespace rs {
 namespace {
 
+// The tokens of `text`. Tokens view their lexer's text, so the lexers made here are kept for
+// the rest of the test program.
 std::vector<Token> LexAll(const std::string& text, const std::string& file = "t.ray") {
-    Lexer lexer(text, file);
+    static std::vector<std::unique_ptr<Lexer>> lexers;
+    Lexer& lexer = *lexers.emplace_back(std::make_unique<Lexer>(text, file));
     std::vector<Token> out;
     while (true) {
         Token t = lexer.Next();
@@ -90,6 +96,15 @@ TEST(Lexer, NumbersRoundAsStrtodDoes) {
         auto t = LexAll(spelling);
         ASSERT_EQ(t.size(), 1u) << spelling;
         EXPECT_EQ(t[0].number, expected) << spelling;
+        // With text after it, the digits are read eight at a time up to a run's end;
+        // every character that may follow a digit run ends it.
+        const char* const kFollowers = " \n-+*/x,()";  // none continues a number
+        const std::string longer =
+            spelling + kFollowers[static_cast<size_t>(i) % 10] + " 12345678 abcdefgh";
+        auto u = LexAll(longer);
+        ASSERT_GE(u.size(), 2u) << longer;
+        EXPECT_EQ(u[0].number, expected) << longer;
+        EXPECT_EQ(u[0].text, spelling) << longer;
     }
 }
 
@@ -190,7 +205,7 @@ std::vector<std::string> ReadStream(const std::string& text, bool background) {
         while (true) {
             s.Peek(1);
             const Token t = s.Next();
-            out.push_back(std::to_string(static_cast<int>(t.kind)) + " " + t.text + " " +
+            out.push_back(std::to_string(static_cast<int>(t.kind)) + " " + std::string(t.text) + " " +
                           t.Location().file + ":" + std::to_string(t.Location().line));
             if (t.kind == TokenKind::End) break;
         }
@@ -218,6 +233,49 @@ TEST(TokenStream, BackgroundLexingGivesTheSameTokensAndErrors) {
     EXPECT_EQ(ReadStream(bad, true), badHere);
     // Stopping early (a parse error) ends the background thread cleanly.
     { TokenStream s(bad, "big.ray", true); EXPECT_EQ(s.Next().text, "poly"); }
+}
+
+// Reads `text` as the parser reads arguments: whether an expression starts, then a literal
+// if one is there, else a token; one line per step with the answers, values, tokens and
+// locations, and the lexical error's message if any.
+std::vector<std::string> ReadLiterals(const std::string& text, bool background) {
+    std::vector<std::string> out;
+    try {
+        TokenStream s(text, "lit.ray", background);
+        while (true) {
+            std::string step = PeekExpression(s) ? "expr " : "- ";
+            if (double v; ReadLiteral(s, v)) {
+                out.push_back(step + "literal " + std::to_string(v));
+                continue;
+            }
+            const Token t = s.Next();
+            out.push_back(step + std::to_string(static_cast<int>(t.kind)) + " " + std::string(t.text) +
+                          " " + t.Location().file + ":" + std::to_string(t.line));
+            if (t.kind == TokenKind::End) break;
+        }
+    } catch (const FatalError& e) {
+        out.push_back(std::string("error: ") + e.what());
+    }
+    return out;
+}
+
+// The lexer answers ReadLiteral and PeekExpression itself when no token is buffered; a
+// background lexer hands over tokens only, so comparing the two checks that the direct
+// answers, values, consumed text, locations and errors are the tokens' own.
+TEST(TokenStream, DirectLiteralsMatchTheTokens) {
+    const char* const kPieces[] = {"-", "+", "1.5", ".5", "7", "2e3", "(", ")", "x", ".", " ",
+                                   "\n", "/* c\n */", "\n# 5 \"f.ray\"\n", "#", "*", "1e999"};
+    std::mt19937 random(7);
+    std::uniform_int_distribution<size_t> piece(0, std::size(kPieces) - 1), length(1, 12);
+    int literals = 0;
+    for (int i = 0; i < 3000; ++i) {
+        std::string text;
+        for (size_t n = length(random); n > 0; --n) text += kPieces[piece(random)];
+        const std::vector<std::string> direct = ReadLiterals(text, false);
+        EXPECT_EQ(direct, ReadLiterals(text, true)) << text;
+        for (const std::string& step : direct) literals += step.find("literal") != std::string::npos;
+    }
+    EXPECT_GT(literals, 1000);  // literals were read
 }
 
 }  // namespace
