@@ -25,7 +25,8 @@ automatic tolerance, at most 1e-6, and the coarse descent of per-cell trees).
 
 With --blob the same table follows for the blob kernel (s = 1, R = 1, threshold 0.6, the
 shared chains' field, on the kit's own chains where it has them) under `method patches`,
-with POV-Ray's `blob` trace time on the same points, one thread, when `povray` is installed.
+with POV-Ray's `blob` trace time on the same points, one thread, when `povray` is installed
+(POV-Ray 3.7 refuses a blob of a million components: its columns are then nan).
 
 Usage: bench/fluid.py [--build DIR] [--sizes 100,10000,100000,1000000] [--threads 2]
        [--rays 200] [--no-check] [--blob] [--no-povray] [--keep DIR]
@@ -73,18 +74,30 @@ def gascuel_scene(pts, plane=True):
     return "".join(out)
 
 
+# GNU time, when installed, reports its child's peak resident memory. wait4's own figure for
+# a child of this script is not that: Linux starts a forked child's peak at this script's
+# resident size (at a million points the script holds ~300 MB of points and scene text).
+GNU_TIME = "/usr/bin/time" if os.access("/usr/bin/time", os.X_OK) else None
+
+
 def render(binary, scene_path, work, tag, threads, extra=()):
-    """One render in its own process; returns its figures (wait4 gives that child's own
-    CPU time and peak resident memory)."""
+    """One render in its own process; returns its figures (wait4 gives that child's CPU
+    time, GNU time its peak resident memory)."""
     stats = os.path.join(work, tag + ".stats")
+    peak_file = os.path.join(work, tag + ".peak")
+    wrapper = [GNU_TIME, "-f", "%M", "-o", peak_file] if GNU_TIME else []
     start = time.monotonic()
-    proc = subprocess.Popen([binary, "-q", "-S", "1", "-t", str(threads), "-V", stats,
-                             "-O", os.path.join(work, tag + ".png")] + list(extra) +
-                            [scene_path])
+    proc = subprocess.Popen(wrapper + [binary, "-q", "-S", "1", "-t", str(threads), "-V",
+                                       stats, "-O", os.path.join(work, tag + ".png")] +
+                            list(extra) + [scene_path])
     _, status, usage = os.wait4(proc.pid, 0)
     wall = time.monotonic() - start
     if status != 0:
         sys.exit("rayshade failed on %s (status %d)" % (scene_path, status))
+    peak_kib = usage.ru_maxrss
+    if GNU_TIME:
+        with open(peak_file) as fh:
+            peak_kib = int(fh.read().split()[-1])
     c = chains.counters(stats)
     obj = "Implicit object 1: "
     rays = c.get("Total rays", 0)
@@ -98,7 +111,7 @@ def render(binary, scene_path, work, tag, threads, extra=()):
         "built": c.get(obj + "octree cells built", 0),
         "kept": c.get(obj + "octree cells", 0),
         "octree": c.get(obj + "octree memory (bytes)", 0) / 2 ** 20,
-        "peak": usage.ru_maxrss / 1024.0,
+        "peak": peak_kib / 1024.0,
         "rays": rays,
     }
 
