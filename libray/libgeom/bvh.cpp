@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libcommon/parallel_build.h"
+
 namespace rs {
 
 namespace {
@@ -20,28 +22,80 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
     nodes_.clear();
     wide_.clear();
     expectedCost_ = 0;
+    const int count = static_cast<int>(boxes.size());
     items_.resize(boxes.size());
-    for (size_t i = 0; i < boxes.size(); ++i) items_[i] = static_cast<int>(i);
+    for (int i = 0; i < count; ++i) items_[i] = i;
     if (boxes.empty()) return;
-    nodes_.reserve(2 * boxes.size());
     // The centres in an array of their own: every level of the build reads them.
     BuildInput input{boxes, {}, {}, {}, {}};
-    input.centres.reserve(boxes.size());
-    for (const Bounds3& b : boxes) input.centres.push_back(b.Center());
+    input.centres.resize(boxes.size());
     if (split == Split::SurfaceArea) {
-        const auto toFloat4 = [](const Vec3& v) {
-            return Float4{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), 0};
-        };
-        input.binLo.reserve(boxes.size());
-        input.binHi.reserve(boxes.size());
-        input.binCentre.reserve(boxes.size());
-        for (size_t i = 0; i < boxes.size(); ++i) {
-            input.binLo.push_back(toFloat4(boxes[i].lo));
-            input.binHi.push_back(toFloat4(boxes[i].hi));
-            input.binCentre.push_back(toFloat4(input.centres[i]));
-        }
+        input.binLo.resize(boxes.size());
+        input.binHi.resize(boxes.size());
+        input.binCentre.resize(boxes.size());
     }
-    BuildNode(items_, 0, static_cast<int>(items_.size()), input, split, 0);
+    const auto toFloat4 = [](const Vec3& v) {
+        return Float4{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), 0};
+    };
+    constexpr int kChunk = 8192;
+    RunBuildLoop((count + kChunk - 1) / kChunk, [&](long chunk) {
+        const int end = std::min(count, static_cast<int>(chunk + 1) * kChunk);
+        for (int i = static_cast<int>(chunk) * kChunk; i < end; ++i) {
+            input.centres[i] = boxes[i].Center();
+            if (split != Split::SurfaceArea) continue;
+            input.binLo[i] = toFloat4(boxes[i].lo);
+            input.binHi[i] = toFloat4(boxes[i].hi);
+            input.binCentre[i] = toFloat4(input.centres[i]);
+        }
+    });
+    // The top levels, leaving the subtrees below them as tasks. Synchronisation: every task
+    // (of this loop and the one above) writes only its own outputs (its chunk of the input
+    // arrays, sized beforehand; its range items_[begin, end), disjoint from the others'; its
+    // own vector of parts) and reads what was written before the loop started; RunBuildLoop
+    // returns after every task has (the worker pool's mutex orders both ends).
+    std::vector<Node> top;
+    std::vector<Subtree> deferred;
+    const bool parallel = count >= kParallelBuildItems;
+    top.reserve(parallel ? 4 * kBuildTasks : 2 * boxes.size());
+    BuildNode(top, items_, 0, count, input, split, 0, count / kBuildTasks,
+              parallel ? &deferred : nullptr);
+    if (deferred.empty()) {
+        nodes_ = std::move(top);
+    } else {
+        // The largest first, for balance; each task partitions only its own items.
+        std::vector<int> order(deferred.size());
+        for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+        std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+            return deferred[a].end - deferred[a].begin > deferred[b].end - deferred[b].begin;
+        });
+        std::vector<std::vector<Node>> parts(deferred.size());
+        RunBuildLoop(static_cast<long>(order.size()), [&](long i) {
+            const Subtree& task = deferred[order[i]];
+            std::vector<Node>& part = parts[order[i]];
+            part.reserve(2 * static_cast<size_t>(task.end - task.begin));
+            BuildNode(part, items_, task.begin, task.end, input, split, task.depth, 0, nullptr);
+        });
+        // Splice in preorder, so the nodes lie exactly where one recursive build puts them.
+        std::vector<int> taskAt(top.size(), -1);
+        for (size_t k = 0; k < deferred.size(); ++k) taskAt[deferred[k].node] = static_cast<int>(k);
+        nodes_.reserve(2 * boxes.size());
+        const auto splice = [&](const auto& self, int node) -> void {
+            const int index = static_cast<int>(nodes_.size());
+            if (taskAt[node] >= 0) {
+                for (Node n : parts[taskAt[node]]) {
+                    if (n.count == 0) n.right += index;
+                    nodes_.push_back(n);
+                }
+                return;
+            }
+            nodes_.push_back(top[node]);
+            if (top[node].count > 0) return;
+            self(self, node + 1);
+            nodes_[index].right = static_cast<int>(nodes_.size());
+            self(self, top[node].right);
+        };
+        splice(splice, 0);
+    }
     wide_.reserve(nodes_.size() / 2 + 1);
     BuildWide(0);
     const Bounds3& root = nodes_[0].box;
@@ -221,19 +275,24 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     return static_cast<int>(middle - items.begin());
 }
 
-int BoundingVolumeHierarchy::BuildNode(std::vector<int>& items, int begin, int end,
-                                       const BuildInput& input, Split split, int depth) {
-    const int index = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
+int BoundingVolumeHierarchy::BuildNode(std::vector<Node>& nodes, std::vector<int>& items,
+                                       int begin, int end, const BuildInput& input, Split split,
+                                       int depth, int deferBelow, std::vector<Subtree>* deferred) {
+    const int index = static_cast<int>(nodes.size());
+    nodes.emplace_back();
+    if (deferred != nullptr && end - begin <= deferBelow) {
+        deferred->push_back({begin, end, depth, index});
+        return index;
+    }
     Bounds3 box, centroids;
     for (int i = begin; i < end; ++i) {
         box.Extend(input.boxes[items[i]]);
         centroids.Extend(input.centres[items[i]]);
     }
-    nodes_[index].box = box;
+    nodes[index].box = box;
     const auto leaf = [&] {
-        nodes_[index].first = begin;
-        nodes_[index].count = end - begin;
+        nodes[index].first = begin;
+        nodes[index].count = end - begin;
         return index;
     };
     Vec3 extent = centroids.Extent();
@@ -256,10 +315,10 @@ int BoundingVolumeHierarchy::BuildNode(std::vector<int>& items, int begin, int e
                              return ca < cb || (ca == cb && a < b);
                          });
     }
-    BuildNode(items, begin, mid, input, split, depth + 1);
-    int right = BuildNode(items, mid, end, input, split, depth + 1);
-    nodes_[index].right = right;
-    nodes_[index].axis = axis;
+    BuildNode(nodes, items, begin, mid, input, split, depth + 1, deferBelow, deferred);
+    const int right = BuildNode(nodes, items, mid, end, input, split, depth + 1, deferBelow, deferred);
+    nodes[index].right = right;
+    nodes[index].axis = axis;
     return index;
 }
 
