@@ -10,7 +10,8 @@
 namespace rs {
 
 // Runs body(i) for every i in [0, count), in any order and possibly concurrently, and
-// returns when every call has returned.
+// returns when every call has returned. Build bodies throw nothing but std::bad_alloc, which
+// on a thread other than the caller's ends the process (as in any std::thread).
 using ParallelLoop = std::function<void(long count, const std::function<void(long)>& body)>;
 
 // Installs `loop` for RunBuildLoop calls made on the constructing thread while the scope

@@ -26,33 +26,28 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
     items_.resize(boxes.size());
     for (int i = 0; i < count; ++i) items_[i] = i;
     if (boxes.empty()) return;
-    // The centres in an array of their own: every level of the build reads them.
+    // The centres in an array of their own: every level of the build reads them. Filled
+    // here, in order (pre-sizing them for parallel fills would write every array twice).
     BuildInput input{boxes, {}, {}, {}, {}};
-    input.centres.resize(boxes.size());
+    input.centres.reserve(boxes.size());
+    for (const Bounds3& b : boxes) input.centres.push_back(b.Center());
     if (split == Split::SurfaceArea) {
-        input.binLo.resize(boxes.size());
-        input.binHi.resize(boxes.size());
-        input.binCentre.resize(boxes.size());
-    }
-    const auto toFloat4 = [](const Vec3& v) {
-        return Float4{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), 0};
-    };
-    constexpr int kChunk = 8192;
-    RunBuildLoop((count + kChunk - 1) / kChunk, [&](long chunk) {
-        const int end = std::min(count, static_cast<int>(chunk + 1) * kChunk);
-        for (int i = static_cast<int>(chunk) * kChunk; i < end; ++i) {
-            input.centres[i] = boxes[i].Center();
-            if (split != Split::SurfaceArea) continue;
-            input.binLo[i] = toFloat4(boxes[i].lo);
-            input.binHi[i] = toFloat4(boxes[i].hi);
-            input.binCentre[i] = toFloat4(input.centres[i]);
+        const auto toFloat4 = [](const Vec3& v) {
+            return Float4{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), 0};
+        };
+        input.binLo.reserve(boxes.size());
+        input.binHi.reserve(boxes.size());
+        input.binCentre.reserve(boxes.size());
+        for (size_t i = 0; i < boxes.size(); ++i) {
+            input.binLo.push_back(toFloat4(boxes[i].lo));
+            input.binHi.push_back(toFloat4(boxes[i].hi));
+            input.binCentre.push_back(toFloat4(input.centres[i]));
         }
-    });
+    }
     // The top levels, leaving the subtrees below them as tasks. Synchronisation: every task
-    // (of this loop and the one above) writes only its own outputs (its chunk of the input
-    // arrays, sized beforehand; its range items_[begin, end), disjoint from the others'; its
-    // own vector of parts) and reads what was written before the loop started; RunBuildLoop
-    // returns after every task has (the worker pool's mutex orders both ends).
+    // writes only its own outputs (its range items_[begin, end), disjoint from the others',
+    // and its own vector of nodes) and reads what was written before the loop started;
+    // RunBuildLoop returns after every task has (the worker pool's mutex orders both ends).
     std::vector<Node> top;
     std::vector<Subtree> deferred;
     const bool parallel = count >= kParallelBuildItems;

@@ -78,7 +78,8 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     // stays registered on both sides despite round-off in the DDA, and flat boxes, e.g. of
     // polygons, get a non-zero extent) and the boxes the walk tests, so a hit a rounding
     // error outside a flat child's box is never rejected.
-    childBoxes_.resize(bounded_.size());
+    childBoxes_.reserve(bounded_.size());
+    for (const Object* child : bounded_) childBoxes_.push_back(child->BoundsInParent().Padded(kEpsilon));
     gridBox_ = bounds_.Padded(kEpsilon);
     const Vec3 extent = gridBox_.Extent();
     voxelSize_ = {extent.x / n_[0], extent.y / n_[1], extent.z / n_[2]};
@@ -86,15 +87,14 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     // Each child's voxel range, computed once: lo[3], hi[3] (hi < lo for an empty box), and
     // the entry count first, so a grid too fine for its children is refused before any
     // entry is stored or visited. In chunks of children on the build's threads (each chunk
-    // writes its own children's slots and its own count; RunBuildLoop returns after all).
+    // writes its own children's ranges and its own count; RunBuildLoop returns after all).
     std::vector<int> ranges(6 * bounded_.size());
     const size_t chunks = (bounded_.size() + kChunk - 1) / kChunk;
     std::vector<uint64_t> chunkEntries(chunks, 0);
     RunBuildLoop(static_cast<long>(chunks), [&](long chunk) {
         const size_t end = std::min(bounded_.size(), (chunk + 1) * kChunk);
         for (size_t i = chunk * kChunk; i < end; ++i) {
-            const Bounds3 box = bounded_[i]->BoundsInParent().Padded(kEpsilon);
-            childBoxes_[i] = box;
+            const Bounds3& box = childBoxes_[i];
             int* r = &ranges[6 * i];
             if (box.IsEmpty()) {
                 std::fill(r, r + 6, 0);
