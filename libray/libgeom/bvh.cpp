@@ -226,39 +226,45 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
         const Float4 e = hi - lo;
         return e[0] >= 0 ? static_cast<double>(e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) : 0.0;
     };
-    // An empty bin leaves both sweeps' unions and counts as they were, so the split before
-    // it costs what the split after it does: the sweeps pass empty bins without computing
-    // anything, which keeps the first split of the least cost (small nodes fill few bins).
+    // An empty bin leaves both sweeps' unions and counts as they were, so every split between
+    // two consecutive non-empty bins costs the same, and the first of them is the one just
+    // after the lower bin: the sweeps run over the non-empty bins only (small nodes fill
+    // few), which keeps the first split of the least cost.
     for (int a = 0; a < 3; ++a) {
         if (!(cExtent[a] > 0)) continue;
-        // rightCost[k]: A·N of bins k.. (the right part when splitting before bin k).
+        // The non-empty bins in order, listed without a branch per bin (each written, and
+        // kept when its count is positive).
+        int filled[kBins];
+        int m = 0;
+        for (int k = 0; k < kBins; ++k) {
+            filled[m] = k;
+            m += counts[a][k] > 0;
+        }
+        // rightCost[j]: A·N of the non-empty bins j.. (the right part of the split before
+        // bin filled[j]).
         double rightCost[kBins];
         Float4 accLo = Float4{} + kInf, accHi = Float4{} - kInf;
         int n = 0;
-        double right = 0;
-        for (int k = kBins - 1; k > 0; --k) {
-            if (counts[a][k] > 0) {
-                accLo = binLo[a][k] < accLo ? binLo[a][k] : accLo;
-                accHi = binHi[a][k] > accHi ? binHi[a][k] : accHi;
-                n += counts[a][k];
-                right = halfArea(accLo, accHi) * n;
-            }
-            rightCost[k] = right;
+        for (int j = m - 1; j > 0; --j) {
+            const int k = filled[j];
+            accLo = binLo[a][k] < accLo ? binLo[a][k] : accLo;
+            accHi = binHi[a][k] > accHi ? binHi[a][k] : accHi;
+            n += counts[a][k];
+            rightCost[j] = halfArea(accLo, accHi) * n;
         }
         accLo = Float4{} + kInf;
         accHi = Float4{} - kInf;
         n = 0;
-        for (int k = 1; k < kBins; ++k) {
-            if (counts[a][k - 1] == 0) continue;
-            accLo = binLo[a][k - 1] < accLo ? binLo[a][k - 1] : accLo;
-            accHi = binHi[a][k - 1] > accHi ? binHi[a][k - 1] : accHi;
-            n += counts[a][k - 1];
-            if (n == count) continue;  // n > 0: bin k - 1 is not empty
-            const double cost = 1 + (halfArea(accLo, accHi) * n + rightCost[k]) / area;
+        for (int j = 0; j + 1 < m; ++j) {
+            const int k = filled[j];
+            accLo = binLo[a][k] < accLo ? binLo[a][k] : accLo;
+            accHi = binHi[a][k] > accHi ? binHi[a][k] : accHi;
+            n += counts[a][k];
+            const double cost = 1 + (halfArea(accLo, accHi) * n + rightCost[j + 1]) / area;
             if (cost < bestCost) {
                 bestCost = cost;
                 bestAxis = a;
-                bestBin = k;
+                bestBin = k + 1;
             }
         }
     }
