@@ -15,7 +15,8 @@
 #     default  NAME.grid.ray without its `sample 1 nojitter` (Rayshade's default adaptive
 #              jittered sampling): ours and the original
 #     threads  NAME.grid.ray at -t 1 and -t 2: wall seconds and the speedup (ours, and the
-#              base build with -c); wall time, so only meaningful on an otherwise idle machine
+#              base build with -c), of the whole render and of its setup (-R 1 1); wall
+#              time, so only meaningful on an otherwise idle machine (the load is printed)
 #   rounds: every figure is the minimum over this many interleaved rounds (default 1)
 #
 # Our CPU time is the whole process's (user + system, from /usr/bin/time). Its parse/setup
@@ -37,7 +38,7 @@ while getopts "b:c:r:m:" opt; do
     r) rounds=$OPTARG ;;
     m) modes=$OPTARG ;;
     c) base="$(cd "$OPTARG" && pwd)" ;;
-    *) sed -n '2,29p' "$0" >&2; exit 2 ;;
+    *) sed -n '2,28p' "$0" >&2; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
@@ -97,10 +98,10 @@ ours_and_base() {
   [ -n "$baseRayshade" ] && ours "$1" "$2.base" "$baseRayshade"
   return 0
 }
-# wall BINARY THREADS FILE KEY: the wall seconds of one render, kept as a minimum.
+# wall BINARY THREADS FILE KEY [ARGS...]: the wall seconds of one render, kept as a minimum.
 wall() {
   (cd "$tmp" && /usr/bin/time -f "%e" -o "$tmp/time" "$1" -q -t "$2" -O "$tmp/threads.png" \
-      "$3" > /dev/null)
+      "${@:5}" "$3" > /dev/null)
   keep_min "$4" "$(cat "$tmp/time")"
 }
 orig() {
@@ -139,7 +140,9 @@ for ((round = 1; round <= rounds; ++round)); do
     if [[ ,$modes, == *,threads,* ]]; then
       for n in 1 2; do
         wall "$rayshade" $n "$s.grid.ray" "$s.wall$n"
+        wall "$rayshade" $n "$s.grid.ray" "$s.setupwall$n" -R 1 1
         [ -n "$baseRayshade" ] && wall "$baseRayshade" $n "$s.grid.ray" "$s.basewall$n"
+        [ -n "$baseRayshade" ] && wall "$baseRayshade" $n "$s.grid.ray" "$s.basesetupwall$n" -R 1 1
       done
     fi
   done
@@ -214,15 +217,19 @@ if [[ ,$modes, == *,default,* ]]; then
 fi
 if [[ ,$modes, == *,threads,* ]]; then
   echo
-  echo "grid files, wall seconds with one and two threads (speedup = 1 thread / 2 threads)"
-  printf "%-7s %7s %7s %7s" scene "-t 1" "-t 2" speedup
-  [ -n "$baseRayshade" ] && printf " | %7s %7s %7s" "base -t1" "base -t2" speedup
+  echo "grid files, wall seconds with one and two threads (speedup = 1 thread / 2 threads);"
+  echo "setup: the same at -R 1 1 (parse, acceleration builds, one pixel); load average $(cut -d' ' -f1-3 /proc/loadavg)"
+  printf "%-7s %7s %7s %7s %7s %7s %7s" scene "-t 1" "-t 2" speedup "setup1" "setup2" speedup
+  [ -n "$baseRayshade" ] && printf " | %7s %7s %7s %7s %7s %7s" "base -t1" "base -t2" speedup "setup1" "setup2" speedup
   echo
   for s in "${scenes[@]}"; do
-    printf "%-7s %7s %7s %7s" "$s" "${best[$s.wall1]}" "${best[$s.wall2]}" \
-        "$(ratio "${best[$s.wall1]}" "${best[$s.wall2]}")"
-    [ -n "$baseRayshade" ] && printf " | %7s %7s %7s" "${best[$s.basewall1]}" "${best[$s.basewall2]}" \
-        "$(ratio "${best[$s.basewall1]}" "${best[$s.basewall2]}")"
+    printf "%-7s %7s %7s %7s %7s %7s %7s" "$s" "${best[$s.wall1]}" "${best[$s.wall2]}" \
+        "$(ratio "${best[$s.wall1]}" "${best[$s.wall2]}")" "${best[$s.setupwall1]}" \
+        "${best[$s.setupwall2]}" "$(ratio "${best[$s.setupwall1]}" "${best[$s.setupwall2]}")"
+    [ -n "$baseRayshade" ] && printf " | %7s %7s %7s %7s %7s %7s" "${best[$s.basewall1]}" \
+        "${best[$s.basewall2]}" "$(ratio "${best[$s.basewall1]}" "${best[$s.basewall2]}")" \
+        "${best[$s.basesetupwall1]}" "${best[$s.basesetupwall2]}" \
+        "$(ratio "${best[$s.basesetupwall1]}" "${best[$s.basesetupwall2]}")"
     echo
   done
 fi

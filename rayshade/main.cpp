@@ -9,12 +9,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "libcommon/error.h"
 #include "libcommon/limits.h"
+#include "libcommon/parallel_build.h"
 #include "libcommon/stats.h"
 #include "libimage/image.h"
 #include "liblight/directional_light.h"
@@ -229,10 +231,19 @@ int Run(int argc, char** argv) {
     }
 
     rs::RunTimes times;
+    // The render's threads, started once: each frame's acceleration builds run on them
+    // (RunBuildLoop), then its pixels.
+    rs::WorkerPool workers(rs::Renderer::ThreadCount(o));
+    const rs::ParallelLoop buildLoop = [&workers](long count, const std::function<void(long)>& body) {
+        workers.Run(count, body, false);
+    };
     for (int f = firstFrame; f < o.startFrame + o.frames; ++f) {
         double frameTime = o.startTime + f * o.frameLength;
         rs::SetCurrentFrame(f);
-        scene.world->PrepareFrame(frameTime, o.shutter);
+        {
+            const rs::ParallelBuildScope parallelBuilds(&buildLoop);
+            scene.world->PrepareFrame(frameTime, o.shutter);
+        }
         if (o.verbose) {
             if (f == firstFrame) {
                 for (const auto& named : scene.namedObjects) {
@@ -251,7 +262,7 @@ int Run(int argc, char** argv) {
         }
         auto renderStart = std::chrono::steady_clock::now();
         Progress progress(o.quiet, f);
-        rs::Renderer renderer(scene, [&](long done, long total) { progress(done, total); });
+        rs::Renderer renderer(scene, [&](long done, long total) { progress(done, total); }, workers);
         bool resuming = cl.resume && f == resumed.frame;
         rs::Image image;
         try {

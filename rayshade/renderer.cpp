@@ -57,6 +57,14 @@ RenderWindow ComputeWindow(const RenderOptions& o) {
 }
 
 Renderer::Renderer(const Scene& scene, ProgressFn progress)
+    : Renderer(scene, std::move(progress), std::make_unique<WorkerPool>(ThreadCount(scene.options)),
+               nullptr) {}
+
+Renderer::Renderer(const Scene& scene, ProgressFn progress, WorkerPool& workers)
+    : Renderer(scene, std::move(progress), nullptr, &workers) {}
+
+Renderer::Renderer(const Scene& scene, ProgressFn progress, std::unique_ptr<WorkerPool> own,
+                   WorkerPool* shared)
     : scene_(scene),
       options_(scene.options),
       window_(ComputeWindow(scene.options)),
@@ -67,7 +75,8 @@ Renderer::Renderer(const Scene& scene, ProgressFn progress)
                    : (scene.options.filter == FilterKind::Gauss ? 1.8 : 1.0)),
       tracer_(scene),
       progress_(std::move(progress)),
-      workers_(ThreadCount(scene.options)) {}
+      ownWorkers_(std::move(own)),
+      workers_(shared != nullptr ? *shared : *ownWorkers_) {}
 
 int Renderer::ThreadCount(const RenderOptions& options) {
     unsigned hw = std::thread::hardware_concurrency();

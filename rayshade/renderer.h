@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -114,6 +115,9 @@ struct RenderStopped {};
 
 class Renderer {
   public:
+    // Renders on `workers` (ThreadCount(scene.options) threads, made by the caller so the
+    // same threads can prepare the scene first), or on a pool of its own.
+    Renderer(const Scene& scene, ProgressFn progress, WorkerPool& workers);
     Renderer(const Scene& scene, ProgressFn progress);
 
     // Renders frame number `frame` whose shutter opens at `frameTime`. The image is RGB, or
@@ -128,6 +132,9 @@ class Renderer {
     static int ThreadCount(const RenderOptions& options);
 
   private:
+    // Renders on *shared, or on `own` when shared is null.
+    Renderer(const Scene& scene, ProgressFn progress, std::unique_ptr<WorkerPool> own,
+             WorkerPool* shared);
     using Pixel = PixelState;
 
     void TakeSingleSample(int x, int y, Pixel& px) const;
@@ -156,7 +163,8 @@ class Renderer {
     SamplingPattern pattern_;
     Tracer tracer_;
     ProgressFn progress_;
-    mutable WorkerPool workers_;  // runs the const rendering loops
+    std::unique_ptr<WorkerPool> ownWorkers_;  // when constructed without a pool
+    WorkerPool& workers_;                     // runs the const rendering loops
     int frame_ = 0;
     double frameTime_ = 0;
 };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libcommon/parallel_build.h"
+
 namespace rs {
 
 namespace {
@@ -20,11 +22,12 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
     nodes_.clear();
     wide_.clear();
     expectedCost_ = 0;
+    const int count = static_cast<int>(boxes.size());
     items_.resize(boxes.size());
-    for (size_t i = 0; i < boxes.size(); ++i) items_[i] = static_cast<int>(i);
+    for (int i = 0; i < count; ++i) items_[i] = i;
     if (boxes.empty()) return;
-    nodes_.reserve(2 * boxes.size());
-    // The centres in an array of their own: every level of the build reads them.
+    // The centres in an array of their own: every level of the build reads them. Filled
+    // here, in order (pre-sizing them for parallel fills would write every array twice).
     BuildInput input{boxes, {}, {}, {}, {}};
     input.centres.reserve(boxes.size());
     for (const Bounds3& b : boxes) input.centres.push_back(b.Center());
@@ -41,7 +44,53 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
             input.binCentre.push_back(toFloat4(input.centres[i]));
         }
     }
-    BuildNode(items_, 0, static_cast<int>(items_.size()), input, split, 0);
+    // The top levels, leaving the subtrees below them as tasks. Synchronisation: every task
+    // writes only its own outputs (its range items_[begin, end), disjoint from the others',
+    // and its own vector of nodes) and reads what was written before the loop started;
+    // RunBuildLoop returns after every task has (the worker pool's mutex orders both ends).
+    std::vector<Node> top;
+    std::vector<Subtree> deferred;
+    const bool parallel = count >= kParallelBuildItems;
+    top.reserve(parallel ? 4 * kBuildTasks : 2 * boxes.size());
+    BuildNode(top, items_, 0, count, input, split, 0, count / kBuildTasks,
+              parallel ? &deferred : nullptr);
+    if (deferred.empty()) {
+        nodes_ = std::move(top);
+    } else {
+        // The largest first, for balance; each task partitions only its own items.
+        std::vector<int> order(deferred.size());
+        for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+        std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+            return deferred[a].end - deferred[a].begin > deferred[b].end - deferred[b].begin;
+        });
+        std::vector<std::vector<Node>> parts(deferred.size());
+        RunBuildLoop(static_cast<long>(order.size()), [&](long i) {
+            const Subtree& task = deferred[order[i]];
+            std::vector<Node>& part = parts[order[i]];
+            part.reserve(2 * static_cast<size_t>(task.end - task.begin));
+            BuildNode(part, items_, task.begin, task.end, input, split, task.depth, 0, nullptr);
+        });
+        // Splice in preorder, so the nodes lie exactly where one recursive build puts them.
+        std::vector<int> taskAt(top.size(), -1);
+        for (size_t k = 0; k < deferred.size(); ++k) taskAt[deferred[k].node] = static_cast<int>(k);
+        nodes_.reserve(2 * boxes.size());
+        const auto splice = [&](const auto& self, int node) -> void {
+            const int index = static_cast<int>(nodes_.size());
+            if (taskAt[node] >= 0) {
+                for (Node n : parts[taskAt[node]]) {
+                    if (n.count == 0) n.right += index;
+                    nodes_.push_back(n);
+                }
+                return;
+            }
+            nodes_.push_back(top[node]);
+            if (top[node].count > 0) return;
+            self(self, node + 1);
+            nodes_[index].right = static_cast<int>(nodes_.size());
+            self(self, top[node].right);
+        };
+        splice(splice, 0);
+    }
     wide_.reserve(nodes_.size() / 2 + 1);
     BuildWide(0);
     const Bounds3& root = nodes_[0].box;
@@ -177,31 +226,45 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
         const Float4 e = hi - lo;
         return e[0] >= 0 ? static_cast<double>(e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) : 0.0;
     };
+    // An empty bin leaves both sweeps' unions and counts as they were, so every split between
+    // two consecutive non-empty bins costs the same, and the first of them is the one just
+    // after the lower bin: the sweeps run over the non-empty bins only (small nodes fill
+    // few), which keeps the first split of the least cost.
     for (int a = 0; a < 3; ++a) {
         if (!(cExtent[a] > 0)) continue;
-        // rightCost[k]: A·N of bins k.. (the right part when splitting before bin k).
+        // The non-empty bins in order, listed without a branch per bin (each written, and
+        // kept when its count is positive).
+        int filled[kBins];
+        int m = 0;
+        for (int k = 0; k < kBins; ++k) {
+            filled[m] = k;
+            m += counts[a][k] > 0;
+        }
+        // rightCost[j]: A·N of the non-empty bins j.. (the right part of the split before
+        // bin filled[j]).
         double rightCost[kBins];
         Float4 accLo = Float4{} + kInf, accHi = Float4{} - kInf;
         int n = 0;
-        for (int k = kBins - 1; k > 0; --k) {
+        for (int j = m - 1; j > 0; --j) {
+            const int k = filled[j];
             accLo = binLo[a][k] < accLo ? binLo[a][k] : accLo;
             accHi = binHi[a][k] > accHi ? binHi[a][k] : accHi;
             n += counts[a][k];
-            rightCost[k] = n > 0 ? halfArea(accLo, accHi) * n : 0;
+            rightCost[j] = halfArea(accLo, accHi) * n;
         }
         accLo = Float4{} + kInf;
         accHi = Float4{} - kInf;
         n = 0;
-        for (int k = 1; k < kBins; ++k) {
-            accLo = binLo[a][k - 1] < accLo ? binLo[a][k - 1] : accLo;
-            accHi = binHi[a][k - 1] > accHi ? binHi[a][k - 1] : accHi;
-            n += counts[a][k - 1];
-            if (n == 0 || n == count) continue;
-            const double cost = 1 + (halfArea(accLo, accHi) * n + rightCost[k]) / area;
+        for (int j = 0; j + 1 < m; ++j) {
+            const int k = filled[j];
+            accLo = binLo[a][k] < accLo ? binLo[a][k] : accLo;
+            accHi = binHi[a][k] > accHi ? binHi[a][k] : accHi;
+            n += counts[a][k];
+            const double cost = 1 + (halfArea(accLo, accHi) * n + rightCost[j + 1]) / area;
             if (cost < bestCost) {
                 bestCost = cost;
                 bestAxis = a;
-                bestBin = k;
+                bestBin = k + 1;
             }
         }
     }
@@ -213,19 +276,24 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     return static_cast<int>(middle - items.begin());
 }
 
-int BoundingVolumeHierarchy::BuildNode(std::vector<int>& items, int begin, int end,
-                                       const BuildInput& input, Split split, int depth) {
-    const int index = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
+int BoundingVolumeHierarchy::BuildNode(std::vector<Node>& nodes, std::vector<int>& items,
+                                       int begin, int end, const BuildInput& input, Split split,
+                                       int depth, int deferBelow, std::vector<Subtree>* deferred) {
+    const int index = static_cast<int>(nodes.size());
+    nodes.emplace_back();
+    if (deferred != nullptr && end - begin <= deferBelow) {
+        deferred->push_back({begin, end, depth, index});
+        return index;
+    }
     Bounds3 box, centroids;
     for (int i = begin; i < end; ++i) {
         box.Extend(input.boxes[items[i]]);
         centroids.Extend(input.centres[items[i]]);
     }
-    nodes_[index].box = box;
+    nodes[index].box = box;
     const auto leaf = [&] {
-        nodes_[index].first = begin;
-        nodes_[index].count = end - begin;
+        nodes[index].first = begin;
+        nodes[index].count = end - begin;
         return index;
     };
     Vec3 extent = centroids.Extent();
@@ -248,10 +316,10 @@ int BoundingVolumeHierarchy::BuildNode(std::vector<int>& items, int begin, int e
                              return ca < cb || (ca == cb && a < b);
                          });
     }
-    BuildNode(items, begin, mid, input, split, depth + 1);
-    int right = BuildNode(items, mid, end, input, split, depth + 1);
-    nodes_[index].right = right;
-    nodes_[index].axis = axis;
+    BuildNode(nodes, items, begin, mid, input, split, depth + 1, deferBelow, deferred);
+    const int right = BuildNode(nodes, items, mid, end, input, split, depth + 1, deferBelow, deferred);
+    nodes[index].right = right;
+    nodes[index].axis = axis;
     return index;
 }
 

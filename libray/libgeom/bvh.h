@@ -220,8 +220,20 @@ class BoundingVolumeHierarchy {
         std::vector<Vec3> centres;
         std::vector<Float4> binLo, binHi, binCentre;
     };
-    int BuildNode(std::vector<int>& items, int begin, int end, const BuildInput& input,
-                  Split split, int depth);
+    // Builds the subtree over items[begin, end) at `depth` into `nodes` (appended in
+    // preorder: a node, its left subtree, its right one) and returns its root's index. With
+    // `deferred`, a subtree of at most deferBelow items is not built but left there, its
+    // root a placeholder node (a parallel task of Build).
+    struct Subtree {
+        int begin, end, depth, node;
+    };
+    static int BuildNode(std::vector<Node>& nodes, std::vector<int>& items, int begin, int end,
+                         const BuildInput& input, Split split, int depth, int deferBelow,
+                         std::vector<Subtree>* deferred);
+    // Below this many items the whole tree is built as one task; above it the top levels
+    // are built first and the subtrees of at most items / kBuildTasks items below them as
+    // separate tasks (RunBuildLoop), for any thread count, so the tree does not depend on it.
+    static constexpr int kParallelBuildItems = 4096, kBuildTasks = 32;
     // The SAH split of items[begin, end) (centroid bounds `centroids`, node box `box`): when
     // a split pays, partitions the items, sets `axis` and returns the first of the right
     // part; otherwise returns kSahLeaf, or kSahMedian when there are too many for a leaf.

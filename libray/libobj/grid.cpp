@@ -8,6 +8,7 @@
 #include "libcommon/constants.h"
 #include "libcommon/error.h"
 #include "libcommon/limits.h"
+#include "libcommon/parallel_build.h"
 #include "libobj/object.h"
 
 namespace rs {
@@ -79,32 +80,38 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     // error outside a flat child's box is never rejected.
     childBoxes_.reserve(bounded_.size());
     for (const Object* child : bounded_) childBoxes_.push_back(child->BoundsInParent().Padded(kEpsilon));
-
     gridBox_ = bounds_.Padded(kEpsilon);
     const Vec3 extent = gridBox_.Extent();
     voxelSize_ = {extent.x / n_[0], extent.y / n_[1], extent.z / n_[2]};
 
-    // Each child's voxel range, computed once: lo[3], hi[3] (hi < lo for an empty box).
+    // Each child's voxel range, computed once: lo[3], hi[3] (hi < lo for an empty box), and
+    // the entry count first, so a grid too fine for its children is refused before any
+    // entry is stored or visited. In chunks of children on the build's threads (each chunk
+    // writes its own children's ranges and its own count; RunBuildLoop returns after all).
     std::vector<int> ranges(6 * bounded_.size());
-    // The entry count first, so a grid too fine for its children is refused before any
-    // entry is stored or visited.
+    const size_t chunks = (bounded_.size() + kChunk - 1) / kChunk;
+    std::vector<uint64_t> chunkEntries(chunks, 0);
+    RunBuildLoop(static_cast<long>(chunks), [&](long chunk) {
+        const size_t end = std::min(bounded_.size(), (chunk + 1) * kChunk);
+        for (size_t i = chunk * kChunk; i < end; ++i) {
+            const Bounds3& box = childBoxes_[i];
+            int* r = &ranges[6 * i];
+            if (box.IsEmpty()) {
+                std::fill(r, r + 6, 0);
+                r[3] = -1;
+                continue;
+            }
+            uint64_t cells = 1;
+            for (int a = 0; a < 3; ++a) {
+                r[a] = VoxelOf(box.lo[a], a);
+                r[3 + a] = VoxelOf(box.hi[a], a);
+                cells *= static_cast<uint64_t>(r[3 + a] - r[a] + 1);
+            }
+            chunkEntries[chunk] += cells;
+        }
+    });
     uint64_t entries = 0;
-    for (size_t i = 0; i < bounded_.size(); ++i) {
-        const Bounds3& box = childBoxes_[i];
-        int* r = &ranges[6 * i];
-        if (box.IsEmpty()) {
-            std::fill(r, r + 6, 0);
-            r[3] = -1;
-            continue;
-        }
-        uint64_t cells = 1;
-        for (int a = 0; a < 3; ++a) {
-            r[a] = VoxelOf(box.lo[a], a);
-            r[3 + a] = VoxelOf(box.hi[a], a);
-            cells *= static_cast<uint64_t>(r[3 + a] - r[a] + 1);
-        }
-        entries += cells;
-    }
+    for (uint64_t e : chunkEntries) entries += e;
     if (entries > static_cast<uint64_t>(Limits().gridEntries)) {
         Report(Severity::Abort, {},
                "grid %dx%dx%d: its %zu children overlap %llu voxels in total, more than the "
@@ -125,22 +132,32 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
         slotCount_ = bounded_.size();
         firstSlot_ = gSlotsAllocated.fetch_add(slotCount_, std::memory_order_relaxed);
     }
-    const auto forEachCell = [&](size_t i, auto&& visit) {
-        const int* r = &ranges[6 * i];
-        for (int z = r[2]; z <= r[5]; ++z)
-            for (int y = r[1]; y <= r[4]; ++y)
-                for (int x = r[0]; x <= r[3]; ++x) visit(CellIndex(x, y, z));
+    // Two passes: count the entries of each cell, then fill them in, each in slabs of z
+    // layers on the build's threads. A slab's task writes only its own cells' counts and
+    // entries, visiting the children in order, so every cell lists its children in order
+    // whatever runs the tasks.
+    const int slabs = std::min(n_[2], kSlabs);
+    const auto forEachCellOfSlab = [&](long slab, auto&& visit) {
+        const int z0 = static_cast<int>(slab * n_[2] / slabs);
+        const int z1 = static_cast<int>((slab + 1) * n_[2] / slabs);  // exclusive
+        for (uint32_t i = 0; i < bounded_.size(); ++i) {
+            const int* r = &ranges[6 * i];
+            for (int z = std::max(r[2], z0); z <= std::min(r[5], z1 - 1); ++z)
+                for (int y = r[1]; y <= r[4]; ++y)
+                    for (int x = r[0]; x <= r[3]; ++x) visit(i, CellIndex(x, y, z));
+        }
     };
-    // Two passes: count the entries of each cell, then fill them in.
     const size_t cellCount = static_cast<size_t>(n_[0]) * n_[1] * n_[2];
     cellStart_.assign(cellCount + 1, 0);
-    for (size_t i = 0; i < bounded_.size(); ++i) forEachCell(i, [&](int c) { ++cellStart_[c + 1]; });
+    RunBuildLoop(slabs, [&](long slab) {
+        forEachCellOfSlab(slab, [&](uint32_t, int c) { ++cellStart_[c + 1]; });
+    });
     for (size_t c = 0; c < cellCount; ++c) cellStart_[c + 1] += cellStart_[c];
     cellItems_.resize(cellStart_[cellCount]);
     std::vector<uint32_t> cursor(cellStart_.begin(), cellStart_.end() - 1);
-    for (uint32_t i = 0; i < bounded_.size(); ++i) {
-        forEachCell(i, [&](int c) { cellItems_[cursor[c]++] = i; });
-    }
+    RunBuildLoop(slabs, [&](long slab) {
+        forEachCellOfSlab(slab, [&](uint32_t i, int c) { cellItems_[cursor[c]++] = i; });
+    });
     ComputeEmptyRuns();
 }
 

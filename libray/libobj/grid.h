@@ -71,6 +71,11 @@ class GridAggregate final : public Aggregate {
     // mount and teapot (0.90x, 0.77x, 0.60x the voxels'), tetra and tree.
     static constexpr double kVoxelStepCost = 0.25, kVoxelEntryCost = 0.25;
 
+    // The build's tasks (RunBuildLoop): children in chunks of kChunk for their
+    // voxel ranges, cells in at most kSlabs slabs of z layers for the voxel lists.
+    static constexpr size_t kChunk = 4096;
+    static constexpr int kSlabs = 16;
+
     int n_[3];
     Search search_;
     ChildHierarchy hierarchy_;  // this frame's search when built, else the voxels

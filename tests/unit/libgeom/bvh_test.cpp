@@ -8,10 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <functional>
 #include <limits>
 #include <set>
+#include <thread>
 #include <vector>
 
+#include "libcommon/parallel_build.h"
 #include "libcommon/random.h"
 
 namespace rs {
@@ -202,6 +206,61 @@ TEST_P(BvhTest, BuildingAgainReplacesTheTree) {
         double tMax = 60;
         bvh.Traverse(ray, 0, tMax, [&](int i) { return visited.insert(i), false; });
         for (int i : expected) EXPECT_EQ(visited.count(i), 1u) << "ray " << r;
+    }
+}
+
+// The sequence of items each walk visits (no visit shrinking the segment) for random rays,
+// and the items containing random points: a fingerprint of the tree's structure.
+std::vector<int> WalkFingerprint(const BoundingVolumeHierarchy& bvh, Rng& rng) {
+    std::vector<int> fingerprint;
+    const auto record = [&](int i) { return fingerprint.push_back(i), false; };
+    for (int r = 0; r < 200; ++r) {
+        const Ray ray = RandomRay(rng, r);
+        double tMax = 40;
+        bvh.Traverse(ray, -5, tMax, record);
+        fingerprint.push_back(-1);
+        bvh.Traverse<true>(ray, -5, tMax, record);
+        fingerprint.push_back(-2);
+        bvh.TraverseInEntryOrder(ray, -5, tMax, record);
+        fingerprint.push_back(-3);
+        bvh.VisitContaining(RandomPoint(rng, 10), [&](int i) { fingerprint.push_back(i); });
+        fingerprint.push_back(-4);
+    }
+    return fingerprint;
+}
+
+TEST_P(BvhTest, BuildsTheSameTreeWhateverLoopRunsItsTasks) {
+    // Enough boxes for the build to split into tasks (bvh.h kParallelBuildItems), built with
+    // no loop installed (every task in order on this thread), by three threads taking
+    // indices from a shared counter, and by a loop running the indices backwards.
+    Rng boxRng(21);
+    const std::vector<Bounds3> boxes = RandomBoxes(boxRng, 20000);
+    BoundingVolumeHierarchy serial;
+    serial.Build(boxes, GetParam());
+    Rng rayRng(22);
+    const std::vector<int> expected = WalkFingerprint(serial, rayRng);
+    const ParallelLoop threads = [](long count, const std::function<void(long)>& body) {
+        std::atomic<long> next{0};
+        const auto work = [&] {
+            for (long i; (i = next.fetch_add(1)) < count;) body(i);
+        };
+        std::vector<std::thread> helpers;
+        for (int t = 0; t < 2; ++t) helpers.emplace_back(work);
+        work();
+        for (std::thread& t : helpers) t.join();
+    };
+    const ParallelLoop backwards = [](long count, const std::function<void(long)>& body) {
+        for (long i = count - 1; i >= 0; --i) body(i);
+    };
+    for (const ParallelLoop* loop : {&threads, &backwards}) {
+        BoundingVolumeHierarchy bvh;
+        {
+            const ParallelBuildScope scope(loop);
+            bvh.Build(boxes, GetParam());
+        }
+        EXPECT_EQ(bvh.ExpectedCost(), serial.ExpectedCost());
+        Rng again(22);
+        EXPECT_EQ(WalkFingerprint(bvh, again), expected) << (loop == &threads ? "threads" : "backwards");
     }
 }
 

@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <thread>
+#include <vector>
+
 #include "libcommon/constants.h"
+#include "libcommon/parallel_build.h"
 #include "libcommon/random.h"
 #include "libcommon/stats.h"
 #include "libobj/list.h"
@@ -361,6 +366,53 @@ TEST_P(GridSearches, RebuildsForEachFrame) {
 
 INSTANTIATE_TEST_SUITE_P(VoxelsAndHierarchy, GridSearches,
                          ::testing::Values(Search::Voxels, Search::Hierarchy));
+
+TEST(GridAggregate, BuildsTheSameWhateverLoopRunsItsTasks) {
+    // Probes (never hit, so a walk visits every child it reaches, in its order) in more
+    // chunks and slabs than one (grid.h kChunk, kSlabs), built serially and by two threads,
+    // one running the first half of the tasks forwards, the other the second half backwards:
+    // each ray must visit the same children in the same order, through the voxels (cell
+    // lists in child order) and through the hierarchy.
+    const ParallelLoop twoHalves = [](long count, const std::function<void(long)>& body) {
+        std::thread helper([&] {
+            for (long i = count - 1; i >= count / 2; --i) body(i);
+        });
+        for (long i = 0; i < count / 2; ++i) body(i);
+        helper.join();
+    };
+    for (const Search search : {Search::Voxels, Search::Hierarchy}) {
+        std::vector<int> logs[2];
+        std::shared_ptr<Object> grids[2];
+        for (int built = 0; built < 2; ++built) {
+            Rng rng(31);
+            std::vector<std::shared_ptr<Object>> probes;
+            for (int i = 0; i < 9000; ++i) {
+                const Vec3 c = RandomPoint(rng, -10, 10), h = RandomPoint(rng, 0.05, 0.8);
+                probes.push_back(Object::MakePrimitive(
+                    std::make_shared<Probe>(i, &logs[built], true, Bounds3{c - h, c + h})));
+            }
+            const ParallelBuildScope scope(built == 1 ? &twoHalves : nullptr);
+            grids[built] = Wrap(std::make_shared<GridAggregate>(20, 24, 40, search), probes);
+        }
+        Rng rng(32);
+        int reaching = 0;
+        for (int r = 0; r < 100; ++r) {
+            Ray ray;
+            ray.origin = RandomPoint(rng, -14, 14);
+            ray.dir = Normalize(RandomPoint(rng, -8, 8) - ray.origin);
+            for (int built = 0; built < 2; ++built) {
+                double tMax = 100;
+                HitRecord hit;
+                grids[built]->Intersect(ray, 0, tMax, hit);
+            }
+            reaching += !logs[0].empty();
+            ASSERT_EQ(logs[0], logs[1]) << "ray " << r;
+            logs[0].clear();
+            logs[1].clear();
+        }
+        EXPECT_GT(reaching, 90);
+    }
+}
 
 TEST(GridAggregate, AutomaticSearchTakesTheCheaperEstimate) {
     // A fine grid (80³ voxels of 0.12) over a sparse lattice of 1000 small spheres: a ray

@@ -1,0 +1,29 @@
+#include "libcommon/parallel_build.h"
+
+namespace rs {
+
+namespace {
+
+// The loop installed on this thread; threads a loop runs on start with none.
+thread_local const ParallelLoop* tInstalled = nullptr;
+
+}  // namespace
+
+ParallelBuildScope::ParallelBuildScope(const ParallelLoop* loop) : previous_(tInstalled) {
+    tInstalled = loop;
+}
+
+ParallelBuildScope::~ParallelBuildScope() { tInstalled = previous_; }
+
+void RunBuildLoop(long count, const std::function<void(long)>& body) {
+    if (tInstalled == nullptr || count <= 1) {
+        const ParallelBuildScope none(nullptr);
+        for (long i = 0; i < count; ++i) body(i);
+        return;
+    }
+    const ParallelLoop& loop = *tInstalled;
+    const ParallelBuildScope none(nullptr);  // this thread runs body too
+    loop(count, body);
+}
+
+}  // namespace rs
