@@ -99,9 +99,9 @@ Field Field::Subset(std::vector<int> rows) const {
     return Field(table_, std::move(rows));
 }
 
-DistanceRange Field::SweptDistanceRange(int i, const Bounds3& box) const {
+DistanceRange Field::SweptDistanceRange(int i, const Bounds3& box, double cutoff) const {
     if (const FieldMotion* motion = table_->motion.get(); motion && motion->Of(i).moving) {
-        return MovingDistanceRange(motion->Of(i), table_->terms[i].skeleton, box);
+        return MovingDistanceRange(motion->Of(i), table_->terms[i].skeleton, box, cutoff);
     }
     return SkeletonDistanceRange(table_->terms[i].skeleton, box);
 }
@@ -207,12 +207,7 @@ void Field::ActiveTerms(const Bounds3& box, std::span<const int32_t> terms,
     for (const int i : terms) {
         if (!MayReach(table.support[i], box)) continue;
         const double radius = table.terms[i].kernel.Radius();
-        const FieldMotion* motion = table.motion.get();
-        const double nearest =
-            motion && motion->Of(i).moving
-                ? MovingDistanceRange(motion->Of(i), table.terms[i].skeleton, box, radius).min
-                : SkeletonDistanceRange(table.terms[i].skeleton, box).min;
-        if (nearest < radius) out.push_back(i);
+        if (SweptDistanceRange(i, box, radius).min < radius) out.push_back(i);
     }
 }
 
