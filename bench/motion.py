@@ -8,7 +8,10 @@ at `x + 0.95*time`), and static, the same scene with the shutter closed (the cha
 time 0). Runs are interleaved, --repeat times. Printed: the median render CPU time of each
 (the child's user + system time, less sensitive to the shared machine than wall time), the
 ratio blurred / static (target within 2x), and from `rayshade -v` the implicit field +
-gradient + bound evaluations per ray and per intersection call of each.
+gradient + bound evaluations per ray and per intersection call of each. With --callgrind,
+each variant also runs once under valgrind's callgrind and the instruction counts and their
+ratio are printed: unlike CPU time, they do not depend on the machine's load (valgrind is
+about 50 times slower: use a small --size).
 """
 import argparse
 import os
@@ -56,6 +59,19 @@ def run(rayshade, path, work, tag):
     }
 
 
+def instructions(rayshade, path, work, tag):
+    """The instructions callgrind counts in one render of `path` (its output's summary)."""
+    out = os.path.join(work, tag + ".callgrind")
+    subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out, rayshade,
+                    "-q", "-t", "1", "-O", os.path.join(work, tag + ".cg.png"), path],
+                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(out) as f:
+        for line in f:
+            if line.startswith("summary:"):
+                return int(line.split()[1])
+    raise RuntimeError("no summary in " + out)
+
+
 def main():
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -63,6 +79,8 @@ def main():
     ap.add_argument("--size", type=int, default=256, help="image side in pixels")
     ap.add_argument("--samples", type=int, default=3, help="samples per pixel side")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--callgrind", action="store_true",
+                    help="also count each variant's instructions under callgrind")
     args = ap.parse_args()
     rayshade = os.path.join(args.build, "rayshade", "rayshade")
     points = chain.load_points(1000)
@@ -76,6 +94,8 @@ def main():
         for _ in range(args.repeat):  # interleaved, so load changes hit both alike
             for name in runs:
                 runs[name].append(run(rayshade, paths[name], work, name))
+        counts = {name: instructions(rayshade, paths[name], work, name)
+                  for name in runs} if args.callgrind else {}
     print("1,000-point chain, method patches, %dx%d, %d samples per pixel, 1 thread, "
           "median of %d runs" % (args.size, args.size, args.samples ** 2, args.repeat))
     print("%-8s %8s %9s %12s %13s" % ("variant", "cpu s", "build s", "evals/ray", "evals/call"))
@@ -89,6 +109,10 @@ def main():
     b, s = med["blurred"], med["static"]
     print("ratio blurred/static: cpu time %.2f (target within 2x), evaluations per ray %.2f, "
           "per intersection call %.2f" % (b[0] / s[0], b[1] / s[1], b[2] / s[2]))
+    if counts:
+        print("callgrind instructions: static %.3f G, blurred %.3f G, ratio %.3f" %
+              (counts["static"] / 1e9, counts["blurred"] / 1e9,
+               counts["blurred"] / counts["static"]))
 
 
 if __name__ == "__main__":

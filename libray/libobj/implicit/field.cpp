@@ -27,24 +27,32 @@ namespace {
 
 // The distance range over `box` of a moving term's skeleton at every time of the interval
 // (field_motion.h): between the box's and the centre box's nearest and farthest points for
-// a point, else the reference's range widened by the reach.
+// a point, else the reference's range widened by the reach. A centre-boxed point whose
+// nearest distance is at least `cutoff` (a kernel radius: the term vanishes on the box)
+// gets no farthest distance computed: the range is then {nearest, nearest}, to be used for
+// that test only.
 DistanceRange MovingDistanceRange(const TermMotion& m, const Skeleton& reference,
-                                  const Bounds3& box) {
+                                  const Bounds3& box,
+                                  double cutoff = std::numeric_limits<double>::infinity()) {
     if (m.centreBoxed) {
-        // Per axis: the gap between the two intervals, and their farthest ends' distance.
+        // Per axis: the gap between the two intervals, then their farthest ends' distance.
         const Bounds3& c = m.centres;
-        double near2 = 0, far2 = 0;
-        const auto axis = [&](double boxLo, double boxHi, double lo, double hi) {
-            const double gap = std::max(0.0, std::max(lo - boxHi, boxLo - hi));
-            const double far = std::max(boxHi - lo, hi - boxLo);
-            near2 += gap * gap;
-            far2 += far * far;
+        const auto gap = [](double boxLo, double boxHi, double lo, double hi) {
+            const double g = std::max(0.0, std::max(lo - boxHi, boxLo - hi));
+            return g * g;
         };
-        axis(box.lo.x, box.hi.x, c.lo.x, c.hi.x);
-        axis(box.lo.y, box.hi.y, c.lo.y, c.hi.y);
-        axis(box.lo.z, box.hi.z, c.lo.z, c.hi.z);
-        const double near = std::sqrt(near2);
-        return {near, std::max(std::sqrt(far2), near)};
+        const double near = std::sqrt(gap(box.lo.x, box.hi.x, c.lo.x, c.hi.x) +
+                                      gap(box.lo.y, box.hi.y, c.lo.y, c.hi.y) +
+                                      gap(box.lo.z, box.hi.z, c.lo.z, c.hi.z));
+        if (near >= cutoff) return {near, near};
+        const auto far = [](double boxLo, double boxHi, double lo, double hi) {
+            const double f = std::max(boxHi - lo, hi - boxLo);
+            return f * f;
+        };
+        const double farthest = std::sqrt(far(box.lo.x, box.hi.x, c.lo.x, c.hi.x) +
+                                          far(box.lo.y, box.hi.y, c.lo.y, c.hi.y) +
+                                          far(box.lo.z, box.hi.z, c.lo.z, c.hi.z));
+        return {near, std::max(farthest, near)};
     }
     DistanceRange r = SkeletonDistanceRange(reference, box);
     r.min = std::max(0.0, r.min - m.reach);
@@ -91,9 +99,9 @@ Field Field::Subset(std::vector<int> rows) const {
     return Field(table_, std::move(rows));
 }
 
-DistanceRange Field::SweptDistanceRange(int i, const Bounds3& box) const {
+DistanceRange Field::SweptDistanceRange(int i, const Bounds3& box, double cutoff) const {
     if (const FieldMotion* motion = table_->motion.get(); motion && motion->Of(i).moving) {
-        return MovingDistanceRange(motion->Of(i), table_->terms[i].skeleton, box);
+        return MovingDistanceRange(motion->Of(i), table_->terms[i].skeleton, box, cutoff);
     }
     return SkeletonDistanceRange(table_->terms[i].skeleton, box);
 }
@@ -198,7 +206,8 @@ void Field::ActiveTerms(const Bounds3& box, std::span<const int32_t> terms,
     const TermTable& table = *table_;
     for (const int i : terms) {
         if (!MayReach(table.support[i], box)) continue;
-        if (SweptDistanceRange(i, box).min < table.terms[i].kernel.Radius()) out.push_back(i);
+        const double radius = table.terms[i].kernel.Radius();
+        if (SweptDistanceRange(i, box, radius).min < radius) out.push_back(i);
     }
 }
 
@@ -210,7 +219,7 @@ namespace {
 bool AddTermBound(const FieldTerm& t, const TermMotion* moves, const Bounds3& box,
                   FieldBound& fb, TermValueRange* range) {
     // A moving term (field_motion.h): its distance range over the interval, its weight range.
-    const DistanceRange r = moves ? MovingDistanceRange(*moves, t.skeleton, box)
+    const DistanceRange r = moves ? MovingDistanceRange(*moves, t.skeleton, box, t.kernel.Radius())
                                   : SkeletonDistanceRange(t.skeleton, box);
     if (r.min >= t.kernel.Radius()) return false;  // f = f' = f'' = 0 on the whole box
     KernelBounds kb = t.kernel.Bounds(r.min, r.max);

@@ -29,6 +29,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -190,8 +191,12 @@ class Field {
     // Subset's field: rows of a shared table (no table of its own is made).
     Field(std::shared_ptr<const TermTable> table, std::vector<int> rows)
         : table_(std::move(table)), rows_(std::move(rows)) {}
-    // Row i's distance range over the box at every time, and its weight interval.
-    DistanceRange SweptDistanceRange(int i, const Bounds3& box) const;
+    // Row i's distance range over the box at every time, and its weight interval. With a
+    // finite `cutoff`, a range whose minimum is at least the cutoff may have its maximum
+    // left at the minimum (MovingDistanceRange in the .cpp): only the minimum then holds.
+    DistanceRange SweptDistanceRange(
+        int i, const Bounds3& box,
+        double cutoff = std::numeric_limits<double>::infinity()) const;
     void WeightRange(int i, double& lo, double& hi) const;
     // Adds the deformation's bounds over the box (if any) to fb.
     void AddDeformationBound(const Bounds3& box, FieldBound& fb) const;

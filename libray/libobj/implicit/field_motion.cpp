@@ -11,17 +11,7 @@ namespace rs {
 
 namespace {
 
-// The calling thread's ray time, and what Now() answered last (a cache, or null with no
-// time set): still the answer while the same motion asks again with no change of time in
-// between (`changes` counts the RayTimeScope changes).
-struct ThreadRayTime {
-    double time = std::numeric_limits<double>::quiet_NaN();
-    uint64_t changes = 0;
-    uint64_t lastId = 0;  // 0: none (motion ids start at 1)
-    uint64_t lastChanges = 0;
-    TermsAtTime* last = nullptr;
-};
-thread_local ThreadRayTime tRayTime;
+using field_motion_detail::tRayTime;
 
 // A few caches per thread (one per moving object a ray meets), least recently used first
 // to go: bounded memory, however many frames and objects come and go.
@@ -34,9 +24,8 @@ std::atomic<uint64_t> gNextMotionId{1};
 FieldMotion::FieldMotion(std::vector<TermMotion> terms, TermAt termAt)
     : terms_(std::move(terms)), termAt_(std::move(termAt)), id_(gNextMotionId++) {}
 
-TermsAtTime* FieldMotion::Now() const {
-    ThreadRayTime& now = tRayTime;
-    if (now.lastId == id_ && now.lastChanges == now.changes) return now.last;
+TermsAtTime* FieldMotion::FindNow() const {
+    field_motion_detail::ThreadRayTime& now = tRayTime;
     const double time = now.time;
     now.lastId = id_;
     now.lastChanges = now.changes;

@@ -83,15 +83,40 @@ class FieldMotion {
     // reference stays valid until the same thread resolves terms of a different time.
     const FieldTerm& Resolve(int row, const FieldTerm& reference) const;
     // The calling thread's terms at its ray time, or null when no ray time is set (every
-    // row then is its reference term). One lookup serves a whole sum.
-    TermsAtTime* Now() const;
+    // row then is its reference term). One lookup serves a whole sum; asked again by the
+    // same motion with no change of time in between, it answers inline.
+    inline TermsAtTime* Now() const;
 
   private:
     friend class TermsAtTime;
+    // Now() when the thread's last answer does not hold: finds or makes this motion's cache.
+    TermsAtTime* FindNow() const;
     std::vector<TermMotion> terms_;
     TermAt termAt_;
     uint64_t id_;  // unique per FieldMotion: the key of the per-thread caches
 };
+
+namespace field_motion_detail {
+
+// The calling thread's ray time, and what FieldMotion::Now() answered last (a cache, or
+// null with no time set): still the answer while the same motion asks again with no change
+// of time in between (`changes` counts the RayTimeScope changes).
+struct ThreadRayTime {
+    double time = std::numeric_limits<double>::quiet_NaN();
+    uint64_t changes = 0;
+    uint64_t lastId = 0;  // 0: none (motion ids start at 1)
+    uint64_t lastChanges = 0;
+    TermsAtTime* last = nullptr;
+};
+inline thread_local ThreadRayTime tRayTime;
+
+}  // namespace field_motion_detail
+
+inline TermsAtTime* FieldMotion::Now() const {
+    const field_motion_detail::ThreadRayTime& now = field_motion_detail::tRayTime;
+    if (now.lastId == id_ && now.lastChanges == now.changes) return now.last;
+    return FindNow();
+}
 
 // The ray time meaning none: reference terms.
 inline constexpr double kNoRayTime = std::numeric_limits<double>::quiet_NaN();
