@@ -3,11 +3,6 @@
 #include <array>
 #include <bit>
 #include <charconv>
-#include <condition_variable>
-#include <deque>
-#include <exception>
-#include <optional>
-#include <thread>
 #include <cstdint>
 #include <cmath>
 #include <cstdlib>
@@ -482,126 +477,8 @@ bool Lexer::ReadNumber(Token& tok) {
     return true;
 }
 
-// Lexes a scene ahead of its parser, on its own thread, into blocks of tokens handed over
-// in order; a bounded number of blocks is in flight and consumed blocks are reused.
-class BackgroundLexer {
-  public:
-    explicit BackgroundLexer(Lexer& lexer) : thread_([this, &lexer] { Run(lexer); }) {}
-    ~BackgroundLexer() {
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
-        }
-        spare_.notify_one();
-        thread_.join();
-    }
-
-    // The next token, as Lexer::Next would give it (lexical errors reported here).
-    void Next(Token& tok) {
-        while (true) {
-            if (block_ && next_ < block_->count) {
-                tok = std::move(block_->tokens[next_++]);
-                if (tok.kind == TokenKind::End) end_ = tok;
-                return;
-            }
-            if (block_ && block_->last) {
-                if (block_->error)
-                    Report(Severity::Abort, block_->error->where, "%s", block_->error->message.c_str());
-                if (block_->failure) std::rethrow_exception(block_->failure);
-                tok = end_;  // the lexer gives End again and again at the end
-                return;
-            }
-            std::unique_lock<std::mutex> lock(mutex_);
-            if (block_) {
-                spare_blocks_.push_back(std::move(block_));
-                spare_.notify_one();
-            }
-            filled_.wait(lock, [&] { return !full_.empty(); });
-            block_ = std::move(full_.front());
-            full_.pop_front();
-            next_ = 0;
-        }
-    }
-
-  private:
-    static constexpr size_t kBlockTokens = 2048;
-    static constexpr size_t kMaxBlocks = 8;  // in flight: lexed, being read or spare
-
-    struct Block {
-        std::vector<Token> tokens = std::vector<Token>(kBlockTokens);
-        size_t count = 0;
-        bool last = false;                  // the lexer stopped after this block
-        std::optional<LexicalError> error;  // why, when it was a lexical error
-        std::exception_ptr failure;         // why, when it was anything else
-    };
-
-    void Run(Lexer& lexer) {
-        size_t made = 0;
-        while (true) {
-            std::unique_ptr<Block> block;
-            {
-                std::unique_lock<std::mutex> lock(mutex_);
-                spare_.wait(lock, [&] { return stop_ || !spare_blocks_.empty() || made < kMaxBlocks; });
-                if (stop_) return;
-                if (!spare_blocks_.empty()) {
-                    block = std::move(spare_blocks_.back());
-                    spare_blocks_.pop_back();
-                }
-            }
-            if (!block) {
-                block = std::make_unique<Block>();
-                ++made;
-            }
-            block->count = 0;
-            try {
-                while (block->count < kBlockTokens && !block->last) {
-                    Token& tok = block->tokens[block->count];
-                    lexer.Lex(tok);
-                    ++block->count;
-                    block->last = tok.kind == TokenKind::End;
-                }
-            } catch (LexicalError& e) {
-                block->error = std::move(e);
-                block->last = true;
-            } catch (...) {
-                block->failure = std::current_exception();
-                block->last = true;
-            }
-            const bool last = block->last;
-            {
-                std::lock_guard<std::mutex> lock(mutex_);
-                full_.push_back(std::move(block));
-            }
-            filled_.notify_one();
-            if (last) return;
-        }
-    }
-
-    std::mutex mutex_;
-    std::condition_variable filled_, spare_;
-    std::deque<std::unique_ptr<Block>> full_;         // lexed, in order
-    std::vector<std::unique_ptr<Block>> spare_blocks_;  // read, to be reused
-    bool stop_ = false;
-    // The reader's side.
-    std::unique_ptr<Block> block_;
-    size_t next_ = 0;
-    Token end_;
-    std::thread thread_;  // last: starts when the rest is built
-};
-
-TokenStream::TokenStream(std::string text, std::string fileName, bool background)
-    : lexer_(std::move(text), std::move(fileName)), ring_(kInitialRing) {
-    if (background) background_ = std::make_unique<BackgroundLexer>(lexer_);
-}
-
-TokenStream::~TokenStream() = default;
-
-void TokenStream::Produce(Token& tok) {
-    if (background_)
-        background_->Next(tok);
-    else
-        lexer_.Next(tok);
-}
+TokenStream::TokenStream(std::string text, std::string fileName)
+    : lexer_(std::move(text), std::move(fileName)), ring_(kInitialRing) {}
 
 void TokenStream::Push() {
     if (count_ == ring_.size()) {
@@ -610,7 +487,7 @@ void TokenStream::Push() {
         ring_ = std::move(grown);
         head_ = 0;
     }
-    Produce(ring_[(head_ + count_) & (ring_.size() - 1)]);
+    lexer_.Next(ring_[(head_ + count_) & (ring_.size() - 1)]);
     ++count_;
 }
 

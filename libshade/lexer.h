@@ -7,7 +7,6 @@
 #pragma once
 
 #include <cstddef>
-#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -76,10 +75,6 @@ class Lexer {
     Token Next();
     // The same into `tok`.
     void Next(Token& tok);
-    // The same, throwing a lexical error as LexicalError instead of reporting it: a lexer
-    // running ahead on another thread hands the error to the parser's thread, which
-    // reports it when it reaches it.
-    void Lex(Token& tok);
 
     // ReadLiteral and PeekExpression (expression_parser.h) without making tokens: the same
     // answers, values and lexical errors (reported) as Next's tokens give them. When the
@@ -89,6 +84,8 @@ class Lexer {
     bool StartsExpression();
 
   private:
+    // Next's work, throwing a lexical error as LexicalError (Next reports it).
+    void Lex(Token& tok);
     // Where the lexer is, to go back to after looking past a sign.
     struct Position {
         size_t pos;
@@ -132,18 +129,11 @@ class Lexer {
     bool atLineStart_ = true;
 };
 
-class BackgroundLexer;
-
 // A lexer with arbitrary lookahead, buffered in a ring that is reused (no allocation per
 // token). Its tokens view its text: they are valid while the stream lives.
 class TokenStream {
   public:
-    // With `background`, a second thread lexes ahead while the parser reads (for large
-    // scenes on more than one core). The tokens, their locations and the lexical errors are
-    // the same either way; an error is reported on the reading thread when the token it
-    // stopped at is read.
-    TokenStream(std::string text, std::string fileName, bool background = false);
-    ~TokenStream();
+    TokenStream(std::string text, std::string fileName);
     TokenStream(const TokenStream&) = delete;
     TokenStream& operator=(const TokenStream&) = delete;
 
@@ -161,8 +151,8 @@ class TokenStream {
         --count_;
     }
     // The lexer, when ReadLiteral and PeekExpression may ask it directly (NextLiteral,
-    // StartsExpression): no token is buffered and the lexing is done here; else null.
-    Lexer* DirectLexer() { return count_ == 0 && !background_ ? &lexer_ : nullptr; }
+    // StartsExpression): no token is buffered; else null.
+    Lexer* DirectLexer() { return count_ == 0 ? &lexer_ : nullptr; }
     Token Next() {
         if (count_ == 0) Push();
         Token t = std::move(ring_[head_]);
@@ -175,10 +165,7 @@ class TokenStream {
     static constexpr size_t kInitialRing = 4;  // a power of two, like every later size
     void Push();  // lexes one more token into the ring, growing it when full
 
-    void Produce(Token& tok);  // the next token from the lexer, here or in the background
-
     Lexer lexer_;
-    std::unique_ptr<BackgroundLexer> background_;  // null: lexed here, on demand
     std::vector<Token> ring_;
     size_t head_ = 0, count_ = 0;  // ring_[head_] is the next token; count_ are buffered
 };

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <optional>
 #include <string_view>
-#include <thread>
 #include <unordered_map>
 
 #include "libcommon/limits.h"
@@ -54,16 +53,6 @@ bool IsTopLevelOnly(std::string_view k) {
     return std::any_of(std::begin(kWords), std::end(kWords), [&](std::string_view w) { return k == w; });
 }
 
-// Whether a scene of `bytes` characters is lexed on a second thread while it is parsed: when
-// the render may use more than one thread and the text is large enough to repay starting
-// one (1 MB is about 10 ms of lexing).
-bool LexInBackground(size_t bytes, const RenderOptions& options) {
-    constexpr size_t kMinBytes = size_t{1} << 20;
-    const unsigned cores = std::thread::hardware_concurrency();
-    const int threads = options.threads > 0 ? options.threads : static_cast<int>(cores ? cores : 1);
-    return threads > 1 && bytes >= kMinBytes;
-}
-
 // Hashes std::string keys and std::string_view lookups alike, so that a token's spelling
 // finds its entry without being copied into a string.
 struct NameHash {
@@ -102,10 +91,8 @@ struct NodeDepth {
 
 class Parser final : public ParserServices {
   public:
-    // `lexInBackground`: see TokenStream.
-    Parser(std::string text, const std::string& fileName, const RenderOptions& options,
-           bool lexInBackground)
-        : tokens_(std::move(text), fileName, lexInBackground) {
+    Parser(std::string text, const std::string& fileName, const RenderOptions& options)
+        : tokens_(std::move(text), fileName) {
         scene_.options = options;
         scopes_.emplace_back();
     }
@@ -827,8 +814,7 @@ NodeDepth Parser::DepthOf(const Object* node) const {
 
 Scene ParseSceneText(std::string text, const std::string& fileName,
                      const RenderOptions& options) {
-    const bool background = LexInBackground(text.size(), options);
-    return Parser(std::move(text), fileName, options, background).Parse();
+    return Parser(std::move(text), fileName, options).Parse();
 }
 
 Scene ParseScene(const ParseInput& input, const RenderOptions& options) {

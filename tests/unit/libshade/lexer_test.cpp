@@ -196,53 +196,16 @@ TEST(TokenStream, PeekDoesNotConsume) {
     EXPECT_EQ(s.Next().text, "c");
 }
 
-// Reads `text` through a token stream to its end (peeking ahead as the parser does) and
-// returns each token as "kind text file:line", then the lexical error's message if any.
-std::vector<std::string> ReadStream(const std::string& text, bool background) {
-    std::vector<std::string> out;
-    try {
-        TokenStream s(text, "big.ray", background);
-        while (true) {
-            s.Peek(1);
-            const Token t = s.Next();
-            out.push_back(std::to_string(static_cast<int>(t.kind)) + " " + std::string(t.text) + " " +
-                          t.Location().file + ":" + std::to_string(t.Location().line));
-            if (t.kind == TokenKind::End) break;
-        }
-        EXPECT_EQ(s.Next().kind, TokenKind::End);  // and again
-    } catch (const FatalError& e) {
-        out.push_back(std::string("error: ") + e.what());
-    }
-    return out;
-}
-
-TEST(TokenStream, BackgroundLexingGivesTheSameTokensAndErrors) {
-    // Far more tokens than the background lexer keeps in flight, with line markers.
-    std::string text;
-    for (int i = 0; i < 30000; ++i) {
-        text += "poly s" + std::to_string(i % 7) + " -1 0.5e-3 (2 * 3)\n";
-        if (i % 5000 == 0) text += "# " + std::to_string(i) + " \"part" + std::to_string(i) + ".ray\"\n";
-    }
-    const std::vector<std::string> here = ReadStream(text, false);
-    EXPECT_EQ(ReadStream(text, true), here);
-    EXPECT_GT(here.size(), 300000u);
-    // A lexical error late in the text stops both at the same token with the same message.
-    const std::string bad = text + "sphere 1e999 0 0 0\n" + text;
-    const std::vector<std::string> badHere = ReadStream(bad, false);
-    ASSERT_EQ(badHere.back().rfind("error: part25000.ray:", 0), 0u) << badHere.back();
-    EXPECT_EQ(ReadStream(bad, true), badHere);
-    // Stopping early (a parse error) ends the background thread cleanly.
-    { TokenStream s(bad, "big.ray", true); EXPECT_EQ(s.Next().text, "poly"); }
-}
-
 // Reads `text` as the parser reads arguments: whether an expression starts, then a literal
 // if one is there, else a token; one line per step with the answers, values, tokens and
-// locations, and the lexical error's message if any.
-std::vector<std::string> ReadLiterals(const std::string& text, bool background) {
+// locations, and the lexical error's message if any. With `viaTokens`, a token is buffered
+// before every step, so both answers come from tokens, not from the lexer directly.
+std::vector<std::string> ReadLiterals(const std::string& text, bool viaTokens) {
     std::vector<std::string> out;
     try {
-        TokenStream s(text, "lit.ray", background);
+        TokenStream s(text, "lit.ray");
         while (true) {
+            if (viaTokens) s.Peek();
             std::string step = PeekExpression(s) ? "expr " : "- ";
             if (double v; ReadLiteral(s, v)) {
                 out.push_back(step + "literal " + std::to_string(v));
@@ -259,9 +222,9 @@ std::vector<std::string> ReadLiterals(const std::string& text, bool background) 
     return out;
 }
 
-// The lexer answers ReadLiteral and PeekExpression itself when no token is buffered; a
-// background lexer hands over tokens only, so comparing the two checks that the direct
-// answers, values, consumed text, locations and errors are the tokens' own.
+// The lexer answers ReadLiteral and PeekExpression itself when no token is buffered;
+// comparing that with answers from buffered tokens checks that the direct answers, values,
+// consumed text, locations and errors are the tokens' own.
 TEST(TokenStream, DirectLiteralsMatchTheTokens) {
     const char* const kPieces[] = {"-", "+", "1.5", ".5", "7", "2e3", "(", ")", "x", ".", " ",
                                    "\n", "/* c\n */", "\n# 5 \"f.ray\"\n", "#", "*", "1e999"};
