@@ -150,7 +150,7 @@ bool Patch::ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, doub
 // there, and where B(a, b) < T no point of the solid's own part has r in [a, b]. The reach
 // is the upper end b left after excluding such intervals from the outside in: [0, R] in
 // steps of R/32 down to the first one not excluded, then its upper halves while they are
-// (17 halvings: R/2^17 above the crossing of B). U is not monotone (u_j grows with r), so
+// (10 halvings: R/2^15 above the crossing of B). U is not monotone (u_j grows with r), so
 // only intervals beyond every non-excluded one are dropped. Rounding: the distances D_j are
 // shortened by 10⁻⁹ of the coordinates and B is compared with T less 10⁻⁹ of it, both far
 // beyond the few ulps of their computation.
@@ -161,38 +161,51 @@ void Patch::LimitToSurface(double threshold) {
         !(threshold > 0)) {
         return;
     }
+    // The members that may add to the sum within R of c, by the distance `start` from c
+    // beyond which each does (D_j − R_j for a point: |p − c_j| >= D_j − r >= R_j below it).
     struct Rival {
-        const Kernel* kernel;  // null: bounded by the own term only
-        double weight, distance;
+        const Kernel* kernel;  // null: not a point, bounded by the own term only
+        double weight, distance, start;
+        bool dominates;  // w_j·f_j(s) >= w·f(s) for every s: same kernel, w_j >= w
     };
-    std::vector<Rival> rivals;
+    const double radius = own.kernel.Radius();
+    thread_local std::vector<Rival> rivals;  // reused: no allocation per patch
+    rivals.clear();
     const std::vector<int>& members = field_.Rows();
     for (size_t k = 1; k < members.size(); ++k) {
         const FieldTerm& other = field_.Terms()[members[k]];
         if (!(other.weight > 0)) continue;  // its term is at most 0
         const auto* centre = std::get_if<PointSkeleton>(&other.skeleton);
         if (!centre) {
-            rivals.push_back({nullptr, 0, 0});
+            rivals.push_back({nullptr, 0, 0, -std::numeric_limits<double>::infinity(), false});
             continue;
         }
         const double rounding =
             kOriginMargin * (Length(point->center) + Length(centre->center));
-        rivals.push_back({&other.kernel, other.weight,
-                          std::max(0.0, Length(centre->center - point->center) - rounding)});
+        const double distance =
+            std::max(0.0, Length(centre->center - point->center) - rounding);
+        const double start = distance - other.kernel.Radius();
+        if (!(start < radius)) continue;  // adds nothing within R
+        rivals.push_back({&other.kernel, other.weight, distance, start,
+                          other.kernel == own.kernel && other.weight >= own.weight});
     }
+    std::sort(rivals.begin(), rivals.end(),
+              [](const Rival& x, const Rival& y) { return x.start < y.start; });
     const double target = threshold * (1 - kOriginMargin);
     auto excluded = [&](double a, double b) {
         const double ownMost = own.weight * own.kernel.Value(a);
         double most = ownMost;
         for (const Rival& j : rivals) {
-            most += j.kernel ? std::min(ownMost,
-                                        j.weight * j.kernel->Value(std::max(0.0, j.distance - b)))
-                             : ownMost;
+            if (most >= target) return false;
+            if (!(j.start < b)) break;  // this one and the rest add 0 on [a, b]
+            const double nearest = std::max(0.0, j.distance - b);
+            most += !j.kernel || (j.dominates && nearest <= a)
+                        ? ownMost
+                        : std::min(ownMost, j.weight * j.kernel->Value(nearest));
         }
         return most < target;
     };
-    const double radius = own.kernel.Radius();
-    constexpr int kSteps = 32, kHalvings = 17;
+    constexpr int kSteps = 32, kHalvings = 10;
     double hi = radius;
     int step = kSteps;
     while (step > 0 && excluded(radius * (step - 1) / kSteps, hi)) {

@@ -107,7 +107,7 @@ class Patch {
     // the bound) and keeps its radius as SurfaceReach(); other skeletons and moving fields
     // keep the unbounded reach. Needs threshold > 0.
     void LimitToSurface(double threshold);
-    // The radius of that ball (at most the own kernel radius R, up to R/2^17 above the
+    // The radius of that ball (at most the own kernel radius R, up to R/2^15 above the
     // bound's crossing); infinity before LimitToSurface or where it bounds nothing.
     double SurfaceReach() const { return surfaceReach_; }
     // Adds a deformation term to the patch field (contact.h); predominance, members and box
