@@ -105,6 +105,17 @@ bool Patch::ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, doub
     const Vec3 fromOwn = p0 - point->center;
     const double ownSquared = LengthSquared(fromOwn);
     double lo = 0, hi = t1 - base;  // the piece as s = t − base
+    if (const double a = LengthSquared(ray.dir); surfaceReach_ < kernel.Radius() && a > 0) {
+        // |fromOwn + s·d|² <= reach², i.e. a·s² + 2·h·s + g <= 0 (NaNs cut nothing).
+        const double reach = surfaceReach_ + margin;
+        const double h = Dot(fromOwn, ray.dir), g = ownSquared - reach * reach;
+        const double discriminant = h * h - a * g;
+        if (discriminant < 0) return false;
+        const double root = std::sqrt(discriminant);
+        lo = std::max(lo, (-h - root) / a);
+        hi = std::min(hi, (-h + root) / a);
+        if (!(lo <= hi)) return false;
+    }
     const std::vector<int>& members = field_.Rows();
     for (size_t k = 1; k < members.size(); ++k) {
         const FieldTerm& other = field_.Terms()[members[k]];
@@ -125,6 +136,90 @@ bool Patch::ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, doub
     t0 = base + lo;
     t1 = std::min(t1, base + hi);
     return t0 <= t1;
+}
+
+// The bound. Let the own skeleton be a static point c with weight w > 0 and kernel f (f
+// decreasing on [0, R), 0 beyond: Kernel::Validate), and p a point at r = |p − c| where
+// the own term predominates and the patch field is at least T. Every member j's term
+// c_j(p) is at most
+//   - the own term w·f(r), since the own term predominates there;
+//   - u_j(r) = w_j·f_j(max(0, D_j − r)) if j is a static point at distance D_j from c with
+//     w_j > 0 (|p − c_j| >= D_j − r, f_j decreasing), and 0 if w_j <= 0;
+// so T <= U(r) = w·f(r) + Σ_j min(w·f(r), u_j(r)). On an interval r ∈ [a, b] the own term is
+// at most w·f(a) and u_j at most u_j(b), so U <= B(a, b) = w·f(a) + Σ_j min(w·f(a), u_j(b))
+// there, and where B(a, b) < T no point of the solid's own part has r in [a, b]. The reach
+// is the upper end b left after excluding such intervals from the outside in: [0, R] in
+// steps of R/32 down to the first one not excluded, then its upper halves while they are
+// (10 halvings: R/2^15 above the crossing of B). U is not monotone (u_j grows with r), so
+// only intervals beyond every non-excluded one are dropped. Rounding: the distances D_j are
+// shortened by 10⁻⁹ of the coordinates and B is compared with T less 10⁻⁹ of it, both far
+// beyond the few ulps of their computation.
+void Patch::LimitToSurface(double threshold) {
+    const FieldTerm& own = field_.Terms()[Own()];
+    const auto* point = std::get_if<PointSkeleton>(&own.skeleton);
+    if (!point || field_.Motion() || field_.Deformation() || !(own.weight > 0) ||
+        !(threshold > 0)) {
+        return;
+    }
+    // The members that may add to the sum within R of c, by the distance `start` from c
+    // beyond which each does (D_j − R_j for a point: |p − c_j| >= D_j − r >= R_j below it).
+    struct Rival {
+        const Kernel* kernel;  // null: not a point, bounded by the own term only
+        double weight, distance, start;
+        bool dominates;  // w_j·f_j(s) >= w·f(s) for every s: same kernel, w_j >= w
+    };
+    const double radius = own.kernel.Radius();
+    thread_local std::vector<Rival> rivals;  // reused: no allocation per patch
+    rivals.clear();
+    const std::vector<int>& members = field_.Rows();
+    for (size_t k = 1; k < members.size(); ++k) {
+        const FieldTerm& other = field_.Terms()[members[k]];
+        if (!(other.weight > 0)) continue;  // its term is at most 0
+        const auto* centre = std::get_if<PointSkeleton>(&other.skeleton);
+        if (!centre) {
+            rivals.push_back({nullptr, 0, 0, -std::numeric_limits<double>::infinity(), false});
+            continue;
+        }
+        const double rounding =
+            kOriginMargin * (Length(point->center) + Length(centre->center));
+        const double distance =
+            std::max(0.0, Length(centre->center - point->center) - rounding);
+        const double start = distance - other.kernel.Radius();
+        if (!(start < radius)) continue;  // adds nothing within R
+        rivals.push_back({&other.kernel, other.weight, distance, start,
+                          other.kernel == own.kernel && other.weight >= own.weight});
+    }
+    std::sort(rivals.begin(), rivals.end(),
+              [](const Rival& x, const Rival& y) { return x.start < y.start; });
+    const double target = threshold * (1 - kOriginMargin);
+    auto excluded = [&](double a, double b) {
+        const double ownMost = own.weight * own.kernel.Value(a);
+        double most = ownMost;
+        for (const Rival& j : rivals) {
+            if (most >= target) return false;
+            if (!(j.start < b)) break;  // this one and the rest add 0 on [a, b]
+            const double nearest = std::max(0.0, j.distance - b);
+            most += !j.kernel || (j.dominates && nearest <= a)
+                        ? ownMost
+                        : std::min(ownMost, j.weight * j.kernel->Value(nearest));
+        }
+        return most < target;
+    };
+    constexpr int kSteps = 32, kHalvings = 10;
+    double hi = radius;
+    int step = kSteps;
+    while (step > 0 && excluded(radius * (step - 1) / kSteps, hi)) {
+        --step;
+        hi = radius * step / kSteps;
+    }
+    if (step > 0) {
+        double lo = radius * (step - 1) / kSteps;
+        for (int i = 0; i < kHalvings; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (excluded(mid, hi) ? hi : lo) = mid;
+        }
+    }
+    surfaceReach_ = hi;
 }
 
 // The automatic neighbour candidates of every term: a uniform grid of cell edge W per axis,

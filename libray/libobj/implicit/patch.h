@@ -23,6 +23,7 @@
 // them.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -96,8 +97,19 @@ class Patch {
     // accept a root (the own term is positive there: d_own < R) stays inside, so a search of the narrowed piece returns what the
     // whole piece's search would, up to which tolerance-sized root. Other neighbours and
     // other kinds leave the piece as it is.
+    // After LimitToSurface, the piece is also cut to the ball of radius SurfaceReach()
+    // around the centre, grown by the same margin: every true root of the own part lies
+    // inside that ball, so the search of the cut piece still finds it.
     bool ClipToOwnRegion(const Ray& ray, double uncertainty, double& t0, double& t1) const;
     static constexpr double kSeamMargin = 1e-3;
+    // Bounds the own part of the patch's solid {patch field >= threshold, own term
+    // predominates} by a ball around a static, undeformed point skeleton (see the .cpp for
+    // the bound) and keeps its radius as SurfaceReach(); other skeletons and moving fields
+    // keep the unbounded reach. Needs threshold > 0.
+    void LimitToSurface(double threshold);
+    // The radius of that ball (at most the own kernel radius R, up to R/2^15 above the
+    // bound's crossing); infinity before LimitToSurface or where it bounds nothing.
+    double SurfaceReach() const { return surfaceReach_; }
     // Adds a deformation term to the patch field (contact.h); predominance, members and box
     // are unchanged.
     void Deform(std::shared_ptr<const FieldDeformation> deformation) {
@@ -111,6 +123,7 @@ class Patch {
 
     Field field_;
     Bounds3 box_;
+    double surfaceReach_ = std::numeric_limits<double>::infinity();
 };
 
 enum class BlendMode { Automatic, Explicit };

@@ -101,6 +101,10 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
                                              std::numeric_limits<std::size_t>::max() /
                                                  kCellBudgetTrees);  // no overflow
         cellStore_ = std::make_unique<LazyCellStore>(kCellBudgetTrees * perTree, &stats_);
+        // ClipToOwnRegion's ball (the lazily made patches get theirs in FullPatch).
+        if (!lazyPatches_) {
+            for (Patch& patch : patches_) patch.LimitToSurface(threshold_);
+        }
     }
     std::vector<Bounds3> patchBoxes;
     patchBoxes.reserve(patches_.size());
@@ -122,7 +126,9 @@ const Patch& PatchesMethod::FullPatch(int i) const {
     LazyPatch& lazy = lazyPatches_[i];
     std::call_once(lazy.once, [&] {
         const uint64_t cpuStart = ThreadCpuMicroseconds();
-        lazy.patch = std::make_unique<const Patch>(whole_, neighbours_->Members(patches_[i].Own()));
+        auto patch = std::make_unique<Patch>(whole_, neighbours_->Members(patches_[i].Own()));
+        patch->LimitToSurface(threshold_);  // for ClipToOwnRegion
+        lazy.patch = std::move(patch);
         stats_.CountPreprocessing(ThreadCpuMicroseconds() - cpuStart);
     });
     return *lazy.patch;

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
+#include <variant>
 
 #include "test_util.h"
 
@@ -221,6 +223,116 @@ TEST(Patch, ClipToOwnRegionKeepsWhereTheOwnTermMayPredominate) {
     ASSERT_TRUE(lone[0].ClipToOwnRegion(axis, uncertainty, t0, t1));
     EXPECT_NEAR(t0, 5 - radius, 1e-12);
     EXPECT_NEAR(t1, 5 + radius, 1e-12);
+}
+
+// The largest |p − c| over sampled points p of the patch's own solid (the patch field at
+// least `threshold` where the own term predominates), c its point skeleton: along `rays`
+// random directions and the six axis directions from c, 400 steps to R.
+double LargestOwnSolidRadius(const Patch& patch, double threshold, Rng& rng, int rays) {
+    const FieldTerm& own = patch.GetField().Terms()[patch.Own()];
+    const Vec3 c = std::get<PointSkeleton>(own.skeleton).center;
+    const double radius = own.kernel.Radius();
+    double largest = 0;
+    for (int i = 0; i < rays + 6; ++i) {
+        Vec3 u{0, 0, 0};
+        if (i < 6) {
+            u[i / 2] = i % 2 ? -1 : 1;
+        } else {
+            u = testing::RandomUnit(rng);
+        }
+        for (int k = 1; k <= 400; ++k) {
+            const double r = radius * k / 400;
+            const Vec3 p = c + u * r;
+            if (patch.Predominates(p) && patch.GetField().Value(p) >= threshold) {
+                largest = std::max(largest, r);
+            }
+        }
+    }
+    return largest;
+}
+
+// LimitToSurface's ball holds the own solid of every patch of random small fluids (points
+// of two kernels, a negative term and a segment among them), against dense sampling.
+TEST(Patch, SurfaceReachHoldsTheOwnSolid) {
+    Rng rng(19);
+    const Kernel linear = Kernel::GascuelLinear(0.45, 2, 1), blob = Kernel::Blob(1, 1);
+    int bounded = 0;
+    double reachSum = 0;
+    for (int fluid = 0; fluid < 12; ++fluid) {
+        const bool isBlob = fluid % 2;
+        const double threshold = isBlob ? 0.6 : 1;
+        std::vector<FieldTerm> terms;
+        const double spread = testing::Uniform(rng, 0.6, 1.6);
+        for (int i = 0; i < 8; ++i) {
+            terms.push_back({std::string(1, static_cast<char>('a' + i)),
+                             PointSkeleton{testing::RandomPoint(rng, -spread, spread)},
+                             isBlob ? blob : linear, testing::Uniform(rng, 0.7, 1.3)});
+        }
+        if (fluid % 3 == 0) terms[3].weight = -0.5;
+        if (fluid % 4 == 1) {
+            terms.push_back({"s", SegmentSkeleton{{-0.5, 0, 0}, {0.5, 0.2, 0}}, terms[0].kernel, 1});
+        }
+        std::vector<Patch> patches = BuildPatches(Field(terms), BlendMode::Automatic);
+        for (Patch& patch : patches) {
+            if (!std::holds_alternative<PointSkeleton>(
+                    patch.GetField().Terms()[patch.Own()].skeleton)) {
+                continue;
+            }
+            patch.LimitToSurface(threshold);
+            const double reach = patch.SurfaceReach();
+            ASSERT_LE(reach, patch.GetField().Terms()[patch.Own()].kernel.Radius());
+            EXPECT_LE(LargestOwnSolidRadius(patch, threshold, rng, 300), reach)
+                << "fluid " << fluid << " patch " << patch.Own();
+            ++bounded;
+            reachSum += reach;
+        }
+    }
+    EXPECT_GT(bounded, 80);
+    EXPECT_LT(reachSum, 0.95 * bounded);  // it bounds something: below R = 1 on average
+}
+
+// Where the bound is attained the reach is the solid's radius (within 1 %, so the test
+// above fails for a reach 5 % smaller): a lone point (its lone surface, f(r) = T), and a
+// pair at distance 2ρ with 2·f(ρ) = T, whose lower-index patch reaches the tie point
+// midway, where both terms equal f(ρ).
+TEST(Patch, SurfaceReachIsTightWhereTheBoundIsAttained) {
+    Rng rng(7);
+    const Kernel linear = Kernel::GascuelLinear(0.45, 2, 1);
+    const double threshold = 1;
+    std::vector<Patch> lone =
+        BuildPatches(Field({{"a", PointSkeleton{{0, 0, 0}}, linear, 1}}), BlendMode::Automatic);
+    lone[0].LimitToSurface(threshold);
+    EXPECT_NEAR(lone[0].SurfaceReach(), 0.45, 1e-4);
+    EXPECT_GT(LargestOwnSolidRadius(lone[0], threshold, rng, 50), 0.99 * lone[0].SurfaceReach());
+    // f(ρ) = 1/2 on the linear kernel's outer piece: find ρ by bisection.
+    double lo = 0.45, hi = 1;
+    for (int i = 0; i < 60; ++i) ((linear.Value(0.5 * (lo + hi)) > 0.5) ? lo : hi) = 0.5 * (lo + hi);
+    const double rho = 0.5 * (lo + hi);
+    std::vector<Patch> pair =
+        BuildPatches(Field({{"a", PointSkeleton{{0, 0, 0}}, linear, 1},
+                            {"b", PointSkeleton{{2 * rho, 0, 0}}, linear, 1}}),
+                     BlendMode::Automatic);
+    pair[0].LimitToSurface(threshold);
+    EXPECT_NEAR(pair[0].SurfaceReach(), rho, 1e-4);
+    EXPECT_GT(LargestOwnSolidRadius(pair[0], threshold, rng, 50), 0.99 * pair[0].SurfaceReach());
+}
+
+// After LimitToSurface, ClipToOwnRegion also cuts to the reach ball (grown by the margin).
+TEST(Patch, ClipToOwnRegionCutsToTheSurfaceReach) {
+    const Kernel linear = Kernel::GascuelLinear(0.45, 2, 1);
+    std::vector<Patch> lone =
+        BuildPatches(Field({{"a", PointSkeleton{{0, 0, 0}}, linear, 1}}), BlendMode::Automatic);
+    lone[0].LimitToSurface(1);
+    const double uncertainty = 1e-6, reach = lone[0].SurfaceReach();
+    const double margin = 1e-3 + uncertainty;
+    Ray axis{{-5, 0, 0}, {1, 0, 0}};
+    double t0 = 0, t1 = 20;
+    ASSERT_TRUE(lone[0].ClipToOwnRegion(axis, uncertainty, t0, t1));
+    EXPECT_NEAR(t0, 5 - reach - margin, 1e-7);
+    EXPECT_NEAR(t1, 5 + reach + margin, 1e-7);
+    Ray past{{-5, reach + 2 * margin, 0}, {1, 0, 0}};
+    t0 = 0, t1 = 20;
+    EXPECT_FALSE(lone[0].ClipToOwnRegion(past, uncertainty, t0, t1));
 }
 
 }  // namespace
