@@ -2,6 +2,7 @@
 
 #include <climits>
 #include <cmath>
+#include <optional>
 
 #include "libshade/expression_parser.h"
 
@@ -51,6 +52,11 @@ AnimatedValue TokenArgReader::ReadAnimatedNumber() {
             const Expr::Range r = e->EvaluateRange(t0, t1);
             return std::pair<double, double>(r.lo, r.hi);
         };
+        if (const std::optional<Expr::Affine> affine = e->AffineInTime()) {
+            v.affine = true;
+            v.affineOffset = affine->offset;
+            v.affineSlope = affine->slope;
+        }
         return v;
     }
     v.value = e->Value();

@@ -87,6 +87,49 @@ ExprPtr Expr::Linear(ExprPtr t0, ExprPtr v0, ExprPtr t1, ExprPtr v1) {
         new Expr(Op::Linear, {std::move(t0), std::move(v0), std::move(t1), std::move(v1)}));
 }
 
+std::optional<Expr::Affine> Expr::AffineInTime() const {
+    bool unit = false;
+    if (const std::optional<double> slope = ScaledTime(unit)) return Affine{-0.0, *slope};
+    if (op_ != Op::Add && op_ != Op::Subtract) return std::nullopt;
+    for (int constant = 0; constant < 2; ++constant) {
+        const Expr& c = *args_[constant];
+        const Expr& s = *args_[1 - constant];
+        if (c.op_ != Op::Constant) continue;
+        const std::optional<double> slope = s.ScaledTime(unit);
+        if (!slope) continue;
+        // C + S, S + C, S - C: offset ±C, slope S; C - S: offset C, slope -S.
+        if (op_ == Op::Add) return Affine{c.value_, *slope};
+        return constant == 0 ? Affine{c.value_, -*slope} : Affine{-c.value_, *slope};
+    }
+    return std::nullopt;
+}
+
+std::optional<double> Expr::ScaledTime(bool& unit) const {
+    switch (op_) {
+        case Op::Time:
+            unit = true;
+            return 1.0;
+        case Op::Negate: {
+            const std::optional<double> slope = args_[0]->ScaledTime(unit);
+            if (slope) return -*slope;
+            return std::nullopt;
+        }
+        case Op::Multiply:
+            for (int constant = 0; constant < 2; ++constant) {
+                const Expr& c = *args_[constant];
+                bool timeIsUnit = false;
+                const std::optional<double> slope = args_[1 - constant]->ScaledTime(timeIsUnit);
+                if (c.op_ == Op::Constant && slope && timeIsUnit) {
+                    unit = false;
+                    return c.value_ * *slope;  // c*(±t) == (±c)*t
+                }
+            }
+            return std::nullopt;
+        default:
+            return std::nullopt;
+    }
+}
+
 double Expr::Evaluate(double time) const {
     auto arg = [&](size_t i) { return args_[i]->Evaluate(time); };
     switch (op_) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace rs {
@@ -67,10 +68,27 @@ class Expr {
         double lo = 0, hi = 0;
     };
     Range EvaluateRange(double t0, double t1) const;
+    // value = offset + slope * time.
+    struct Affine {
+        double offset = 0, slope = 0;
+        double At(double time) const { return offset + slope * time; }
+    };
+    // The expression as an Affine whose At(t) equals Evaluate(t) bit for bit at every t,
+    // read from the tree's shape (no sampling); nothing when the expression is static, not
+    // affine in time (time*time, sin(time), frame, linear(...)) or affine in a form whose
+    // rounding At does not reproduce (e.g. 2*(1 + time), time/3). Accepted: S, C + S,
+    // S + C, C - S, S - C, with C a constant and S a scaled time: time, -S, C*T, T*C (T
+    // being time or -time). Exact since b*t, its negation and one addition round the same
+    // in both (x - y == x + (-y); -(c*t) == (-c)*t; a bare S has offset -0, as -0 + y == y
+    // for every y, zeros included).
+    std::optional<Affine> AffineInTime() const;
 
   private:
     Expr(Op op, std::vector<ExprPtr> args);
     static ExprPtr Fold(std::shared_ptr<Expr> e);
+    // The slope when this node is a scaled time (AffineInTime's S), `unit` set when it is
+    // time or -time (slope ±1).
+    std::optional<double> ScaledTime(bool& unit) const;
 
     Op op_;
     std::vector<ExprPtr> args_;

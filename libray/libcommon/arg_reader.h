@@ -27,9 +27,16 @@ struct AnimatedValue {
     // When animated: an interval [lo, hi] holding at(t) for every t in [t0, t1], or
     // infinite ends where the reader cannot bound the value (see Expr::EvaluateRange).
     std::function<std::pair<double, double>(double, double)> range;
+    // When animated and `affine`: at(t) == affineOffset + affineSlope * t bit for bit, for
+    // every t (the reader checked the expression's form), which At computes without `at`.
+    bool affine = false;
+    double affineOffset = 0, affineSlope = 0;
 
     bool IsAnimated() const { return static_cast<bool>(at); }
-    double At(double time) const { return at ? at(time) : value; }
+    double At(double time) const {
+        if (affine) return affineOffset + affineSlope * time;
+        return at ? at(time) : value;
+    }
 };
 
 class ArgReader {

@@ -56,7 +56,7 @@ class DeclaredNumbers {
     bool IsAnimated(size_t index) const { return Animated(index) != nullptr; }
     double At(size_t index, double time) const {
         const AnimatedValue* v = Animated(index);
-        return v ? v->at(time) : values_[index];
+        return v ? v->At(time) : values_[index];
     }
     // An interval holding At(index, t) for every t in [t0, t1] (AnimatedValue::range;
     // infinite ends when the value cannot be bounded).

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <random>
 
 #include "libshade/expression_parser.h"
 #include "libshade/symtab.h"
@@ -218,6 +221,68 @@ TEST(Expression, SharedSubtreesCannotExplodeEvaluation) {
         }
     }
     EXPECT_EQ(error, "e.ray:1: Expression too complex");
+}
+
+std::optional<Expr::Affine> AffineOf(const std::string& text) {
+    SymbolTable symbols;
+    return Parse(text, symbols)->AffineInTime();
+}
+
+TEST(Expression, AffineInTimeReadsTheTreesShape) {
+    struct Case {
+        const char* text;
+        double offset, slope;
+    };
+    const Case affine[] = {{"(time)", -0.0, 1},           {"(-time)", -0.0, -1},
+                           {"(-1 + time)", -1, 1},        {"(time + 2)", 2, 1},
+                           {"(3*0.2 + 0.3*time)", 3 * 0.2, 0.3},
+                           {"(0.95*time - 0.25)", -0.25, 0.95},
+                           {"(2 - time*0.5)", 2, -0.5},   {"(-(2*time))", -0.0, -2},
+                           {"(2*-time)", -0.0, -2},       {"(1 + -time*4)", 1, -4}};
+    for (const Case& c : affine) {
+        const std::optional<Expr::Affine> a = AffineOf(c.text);
+        ASSERT_TRUE(a) << c.text;
+        EXPECT_EQ(std::bit_cast<uint64_t>(a->offset), std::bit_cast<uint64_t>(c.offset)) << c.text;
+        EXPECT_EQ(a->slope, c.slope) << c.text;
+    }
+    // Not affine in time, static, or affine in a form whose rounding At would not reproduce.
+    for (const char* text : {"(time*time)", "(sin(time))", "(frame)", "(frame + time)",
+                             "(linear(0, 0, 1, 1))", "(1 + 2)", "(2*(1 + time))", "(time/3)",
+                             "(2*(3*time))", "(-(1 + time))", "(1 + time + 2)"}) {
+        EXPECT_FALSE(AffineOf(text)) << text;
+    }
+}
+
+// How many of `times` give At(t) and Evaluate(t) differing in some bit.
+int AffineMismatches(const Expr& e, const Expr::Affine& a, const std::vector<double>& times) {
+    int mismatches = 0;
+    for (double t : times) {
+        mismatches += std::bit_cast<uint64_t>(a.At(t)) != std::bit_cast<uint64_t>(e.Evaluate(t));
+    }
+    return mismatches;
+}
+
+TEST(Expression, AffineInTimeIsEvaluateBitForBit) {
+    std::mt19937_64 rng(14);
+    std::uniform_real_distribution<double> uniform(-3, 3);
+    std::vector<double> times = {0.0, -0.0, 1, -1, 1e300, -1e-310};
+    for (int i = 0; i < 2000; ++i) times.push_back(uniform(rng) * std::pow(10, uniform(rng)));
+    const char* forms[] = {"(%.17g + %.17g*time)", "(time*%.17g - %.17g)",
+                           "(%.17g - -time*%.17g)", "(-(%.17g*time) + %.17g)"};
+    for (int i = 0; i < 50; ++i) {
+        for (const char* form : forms) {
+            char text[128];
+            std::snprintf(text, sizeof text, form, uniform(rng), uniform(rng));
+            SymbolTable symbols;
+            const ExprPtr e = Parse(text, symbols);
+            const std::optional<Expr::Affine> a = e->AffineInTime();
+            ASSERT_TRUE(a) << text;
+            EXPECT_EQ(AffineMismatches(*e, *a, times), 0) << text;
+            // The comparison sees a slope off by one ulp.
+            const Expr::Affine perturbed{a->offset, std::nextafter(a->slope, 10.0)};
+            EXPECT_GT(AffineMismatches(*e, perturbed, times), 0) << text;
+        }
+    }
 }
 
 }  // namespace
