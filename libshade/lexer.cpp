@@ -165,7 +165,9 @@ const std::string* InternFileName(const std::string& name) {
 }
 
 void Lexer::Fail(const char* format, const std::string& arg) const {
-    throw LexicalError{SourceLocation{*file_, line_}, StringPrintf(format, Abbreviate(arg).c_str())};
+    const std::string message = StringPrintf(format, Abbreviate(arg).c_str());
+    Report(Severity::Abort, SourceLocation{*file_, line_}, "%s", message.c_str());
+    throw FatalError(Severity::Abort, message);  // not reached: Report throws for Abort
 }
 
 void Lexer::SkipSpaceAndCommentsSlowly() {
@@ -275,14 +277,6 @@ Token Lexer::Next() {
 }
 
 void Lexer::Next(Token& tok) {
-    try {
-        Lex(tok);
-    } catch (const LexicalError& e) {
-        Report(Severity::Abort, e.where, "%s", e.message.c_str());
-    }
-}
-
-void Lexer::Lex(Token& tok) {
     SkipSpaceAndComments();
     tok.kind = TokenKind::End;
     tok.text = {};
@@ -319,43 +313,33 @@ void Lexer::Lex(Token& tok) {
 }
 
 bool Lexer::NextLiteral(double& value) {
-    try {
-        SkipSpaceAndComments();
-        const char c = At(text_, pos_);
-        if (c != '-' && c != '+') return ReadNumberValue(value);
-        const Position sign = Save();
-        ++pos_;
-        atLineStart_ = false;
-        SkipSpaceAndComments();
-        if (ReadNumberValue(value)) {
-            if (c == '-') value = -value;
-            return true;
-        }
-        Restore(sign);
-        return false;
-    } catch (const LexicalError& e) {
-        Report(Severity::Abort, e.where, "%s", e.message.c_str());
+    SkipSpaceAndComments();
+    const char c = At(text_, pos_);
+    if (c != '-' && c != '+') return ReadNumberValue(value);
+    const Position sign = Save();
+    ++pos_;
+    atLineStart_ = false;
+    SkipSpaceAndComments();
+    if (ReadNumberValue(value)) {
+        if (c == '-') value = -value;
+        return true;
     }
-    return false;  // not reached: Report throws for Abort
+    Restore(sign);
+    return false;
 }
 
 bool Lexer::StartsExpression() {
-    try {
-        SkipSpaceAndComments();
-        const char c = At(text_, pos_);
-        if (c == '(') return true;
-        if (c != '-' && c != '+') return AtNumber();
-        const Position sign = Save();
-        ++pos_;
-        atLineStart_ = false;
-        SkipSpaceAndComments();
-        const bool number = AtNumber();
-        Restore(sign);
-        return number;
-    } catch (const LexicalError& e) {
-        Report(Severity::Abort, e.where, "%s", e.message.c_str());
-    }
-    return false;  // not reached: Report throws for Abort
+    SkipSpaceAndComments();
+    const char c = At(text_, pos_);
+    if (c == '(') return true;
+    if (c != '-' && c != '+') return AtNumber();
+    const Position sign = Save();
+    ++pos_;
+    atLineStart_ = false;
+    SkipSpaceAndComments();
+    const bool number = AtNumber();
+    Restore(sign);
+    return number;
 }
 
 bool Lexer::ReadNumberValue(double& value) {

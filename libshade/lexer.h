@@ -61,12 +61,6 @@ bool SpellsKeyword(std::string_view word, std::string_view keyword);
 // distinct file names, and tokens then carry a plain pointer instead of a counted one).
 const std::string* InternFileName(const std::string& name);
 
-// A lexical error found but not reported yet (see Lexer::Lex).
-struct LexicalError {
-    SourceLocation where;
-    std::string message;
-};
-
 class Lexer {
   public:
     // `fileName` names the text in locations until a line marker says otherwise.
@@ -84,8 +78,6 @@ class Lexer {
     bool StartsExpression();
 
   private:
-    // Next's work, throwing a lexical error as LexicalError (Next reports it).
-    void Lex(Token& tok);
     // Where the lexer is, to go back to after looking past a sign.
     struct Position {
         size_t pos;
