@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <map>
 
@@ -51,8 +53,18 @@ constexpr bool IsIdentifierStart(char c) {
 }
 constexpr bool IsIdentifierChar(char c) { return IsIdentifierStart(c) || IsDigit(c); }
 
+// The characters that start a name cpp may define on its own: '_' and the first letters
+// of kCppPredefinedNames (most words of a scene start with none of them).
+constexpr std::array<bool, 256> kPredefinedStarts = [] {
+    std::array<bool, 256> table{};
+    table['_'] = true;
+    for (std::string_view name : kCppPredefinedNames) table[static_cast<unsigned char>(name[0])] = true;
+    return table;
+}();
+
 // An identifier cpp may define on its own: reserved names and the traditional ones.
 bool IsPredefinedByCpp(std::string_view word) {
+    if (!kPredefinedStarts[static_cast<unsigned char>(word[0])]) return false;
     if (word[0] == '_') return true;
     return std::find(std::begin(kCppPredefinedNames), std::end(kCppPredefinedNames), word) !=
            std::end(kCppPredefinedNames);
@@ -203,6 +215,36 @@ constexpr std::array<PlainClass, 256> kPlainClasses = [] {
     return table;
 }();
 
+// Runs of digits, blanks, newlines, '.' and '-' (most of a large scene's text: its numbers)
+// are crossed sixteen bytes at a time.
+constexpr char kCommonPlain[] = "0123456789 \n.-";
+static_assert([] {
+    for (const char* c = kCommonPlain; *c != '\0'; ++c)
+        if (kPlainClasses[static_cast<unsigned char>(*c)] != PlainClass::Plain) return false;
+    return true;
+}());
+
+// Whether the 16 bytes at p are all characters of kCommonPlain.
+bool AllCommonPlain(const char* p) {
+    typedef unsigned char Bytes16 __attribute__((vector_size(16)));
+    Bytes16 v;
+    std::memcpy(&v, p, sizeof v);
+    const Bytes16 common = (v - '0' < 10) | (v == ' ') | (v == '\n') | (v == '.') | (v == '-');
+    uint64_t halves[2];
+    std::memcpy(halves, &common, sizeof halves);
+    return (halves[0] & halves[1]) == ~uint64_t{0};
+}
+
+// The first index from i on of a character that is not Plain (the NUL at p[n] is not).
+size_t SkipPlain(const char* p, size_t n, size_t i) {
+    for (;;) {
+        while (i + 16 <= n && AllCommonPlain(p + i)) i += 16;
+        // Byte by byte up to the next sixteen (not past the NUL at p[n], which stops it).
+        for (const size_t stop = i + 16; i < stop; ++i)
+            if (kPlainClasses[static_cast<unsigned char>(p[i])] != PlainClass::Plain) return i;
+    }
+}
+
 // Whether `text` is plain: no directive, comment, quote, backslash or control character,
 // and no word a cpp predefines. With no macros defined, the preprocessor's output for plain
 // text is the text itself (with a final newline): every line is copied as it is. One pass
@@ -216,7 +258,7 @@ bool IsPlainText(const std::string& text) {
     const char* p = text.c_str();
     const size_t n = text.size();
     for (size_t i = 0; i < n;) {
-        while (kPlainClasses[static_cast<unsigned char>(p[i])] == PlainClass::Plain) ++i;
+        i = SkipPlain(p, n, i);
         if (kPlainClasses[static_cast<unsigned char>(p[i])] == PlainClass::Special)
             return i == n;  // the NUL after the text, or a special character
         // p[i] may start an identifier.

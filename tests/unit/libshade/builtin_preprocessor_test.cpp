@@ -146,6 +146,30 @@ TEST(BuiltinPreprocessor, LeavesEverythingElseToCpp) {
     EXPECT_FALSE(PreprocessBuiltin("a\n", "t.ray", {{"_RESERVED", "1"}}).has_value());
 }
 
+TEST(BuiltinPreprocessor, FindsWhatNeedsCppAtEveryOffsetOfALongNumberRun) {
+    // Runs of numbers are scanned sixteen bytes at a time: a character or word that needs
+    // cpp is found wherever it falls in such a run, at every offset from its start.
+    const std::string numbers = "-0.992188 1 -1.5 0.25\n3 -4.125 7 8.5 ";
+    std::string run;
+    while (run.size() < 80) run += numbers;
+    for (const std::string needsCpp : {"\\", "\"", "unix", "_X", "'"}) {
+        for (size_t k = 0; k <= 64; ++k) {
+            const std::string text = run.substr(0, k) + " " + needsCpp + " " + run.substr(k) + "\n";
+            EXPECT_FALSE(PreprocessBuiltin(text, "t.ray", {}).has_value()) << needsCpp << " at " << k;
+        }
+    }
+    for (size_t k = 0; k <= 64; ++k) {
+        // A comment is seen too (and removed by the full built-in path)...
+        const std::string commented = run.substr(0, k) + "/* c */" + run.substr(k) + "\n";
+        const std::optional<std::string> stripped = PreprocessBuiltin(commented, "t.ray", {});
+        ASSERT_TRUE(stripped.has_value()) << k;
+        EXPECT_EQ(stripped->find("/*"), std::string::npos) << k;
+        // ...and without any of these the text is plain and comes back as it is.
+        const std::string plain = run.substr(0, k) + " sphere " + run.substr(k) + "\n";
+        EXPECT_EQ(PreprocessBuiltin(plain, "t.ray", {}), std::optional<std::string>(plain)) << k;
+    }
+}
+
 TEST(BuiltinPreprocessor, RunawayExpansionGoesToCpp) {
     // Each level doubles: 2^40 tokens. Stopped by the work bound, not by running out of
     // memory.
