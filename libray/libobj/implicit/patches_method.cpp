@@ -43,7 +43,7 @@ int PatchesMethod::AutoMinDepth(const Patch& patch, double threshold) {
 }
 
 PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
-                             const ImplicitObjectStats& stats)
+                             const ImplicitObjectStats& stats, std::size_t gridMinPatches)
     : threshold_(options.threshold),
       settings_(options.search, options.octree),
       autoDepth_(options.autoDepth),
@@ -109,7 +109,11 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
     std::vector<Bounds3> patchBoxes;
     patchBoxes.reserve(patches_.size());
     for (const Patch& patch : patches_) patchBoxes.push_back(patch.Box());
-    bvh_.Build(patchBoxes);
+    if (patches_.size() > gridMinPatches) {
+        grid_ = std::make_unique<const PatchGrid>(patchBoxes);
+    } else {
+        bvh_.Build(patchBoxes);
+    }
 }
 
 OctreeSettings PatchesMethod::PatchSettings(const Patch& patch) const {
@@ -155,13 +159,23 @@ std::optional<double> PatchesMethod::FirstRoot(const Ray& ray, double tMin, doub
     return hit ? std::optional<double>(hit->t) : std::nullopt;
 }
 
-// The patches in the order the ray enters their boxes, each box clipped to (tMin, best) so
-// patches beyond the best hit so far are skipped.
+template <class Visit>
+void PatchesMethod::WalkPatches(const Ray& ray, double tMin, double& tMax,
+                                Visit&& visit) const {
+    if (grid_) {
+        grid_->TraverseInEntryOrder(ray, tMin, tMax, visit);
+    } else {
+        bvh_.TraverseInEntryOrder(ray, tMin, tMax, visit);
+    }
+}
+
+// The patches in the order the ray enters their boxes (or grid cells), the walk clipped to
+// (tMin, best) so patches beyond the best hit so far are skipped.
 std::optional<MethodHit> PatchesMethod::Intersect(const Ray& ray, double tMin,
                                                   double tMax) const {
     double best = tMax;
     int bestPatch = -1;
-    bvh_.TraverseInEntryOrder(ray, tMin, best, [&](int patch) {
+    WalkPatches(ray, tMin, best, [&](int patch) {
         // A ray missing the own term's support meets no acceptable root: skip the patch
         // before its tree is built (the result is the same).
         if (!patches_[patch].MayHoldRoot(ray, tMin, best)) return false;

@@ -4,7 +4,8 @@
 // one LG octree per patch, made by the first ray reaching the patch (LazyOctree) and, but
 // for objects with contacts, grown per cell by the rays (LGOctree's per-cell mode, under
 // one budget for the object), and a bounding volume hierarchy over the patch boxes that
-// rays walk front to back.
+// rays walk front to back (above gridMinPatches patches a uniform grid of them instead,
+// patch_grid.h).
 //
 // The octree settings are the object's (its RootSearchSettings and OctreeHeuristics), with
 // each patch's depth chosen from its own skeleton under `octree auto` (AutoMinDepth).
@@ -27,15 +28,19 @@
 #include "libobj/implicit/lazy_octree.h"
 #include "libobj/implicit/object_stats.h"
 #include "libobj/implicit/patch.h"
+#include "libobj/implicit/patch_grid.h"
 
 namespace rs {
 
 class PatchesMethod final : public IntersectionMethod {
   public:
     // `whole` (the object's plain sum) and `stats` must outlive the method; `options`
-    // gives the threshold, octree settings, auto depth, blend graph and contacts.
+    // gives the threshold, octree settings, auto depth, blend graph and contacts. Rays walk
+    // a PatchGrid of the patches when there are more than `gridMinPatches` (tests lower it),
+    // else a bounding volume hierarchy.
     PatchesMethod(const Field& whole, const ImplicitOptions& options,
-                  const ImplicitObjectStats& stats);
+                  const ImplicitObjectStats& stats,
+                  std::size_t gridMinPatches = kGridMinPatches);
 
     std::optional<double> FirstRoot(const Ray& ray, double tMin, double tMax) const override;
     // The first root of every patch's search, the owning term being the patch's own.
@@ -55,6 +60,12 @@ class PatchesMethod final : public IntersectionMethod {
     // The depth of heuristics 3 and 3bis for a patch under `octree auto` (see the .cpp).
     static int AutoMinDepth(const Patch& patch, double threshold);
 
+    // Objects with more patches than this are walked through a PatchGrid: measured in the
+    // module README ("Fluids").
+    static constexpr std::size_t kGridMinPatches = 2048;
+    // Whether the object walks a grid (there is then no hierarchy).
+    bool WalksGrid() const { return grid_ != nullptr; }
+
   private:
     // The per-cell trees of an object keep at most this many times one tree's memory budget
     // (OctreeHeuristics::memoryBudget) of cells between them.
@@ -73,6 +84,10 @@ class PatchesMethod final : public IntersectionMethod {
     const Patch& FullPatch(int i) const;
     // Tree of patch i, building it on first use. Thread-safe.
     const LGOctree& Tree(int i) const;
+    // Calls visit(patch) for the patches the ray's piece may meet, front to back, through
+    // the grid or the hierarchy (their common TraverseInEntryOrder contract).
+    template <class Visit>
+    void WalkPatches(const Ray& ray, double tMin, double& tMax, Visit&& visit) const;
     // The largest distance between a root a search of this method may accept on `ray`
     // and the true root it stands for, in world units (Patch::ClipToOwnRegion's margin).
     double SeamUncertainty(const Ray& ray) const;
@@ -99,7 +114,8 @@ class PatchesMethod final : public IntersectionMethod {
     std::unique_ptr<LazyOctree[]> trees_;  // one per patch
     std::vector<DeformedPatch> contacts_;
     Bounds3 bounds_;
-    BoundingVolumeHierarchy bvh_;  // over the patch boxes, one item per patch
+    BoundingVolumeHierarchy bvh_;  // over the patch boxes, one item per patch (no grid_)
+    std::unique_ptr<const PatchGrid> grid_;  // of the patch boxes (null: bvh_)
 };
 
 }  // namespace rs
