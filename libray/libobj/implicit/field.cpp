@@ -66,10 +66,17 @@ DistanceRange MovingDistanceRange(const TermMotion& m, const Skeleton& reference
     return MovingDistanceRange(m, reference, Bounds3(p, p));
 }
 
-// [lo, hi] holding w·f(d) for w in [wLo, wHi] and d in r (f is monotone in d).
-void WeightedKernelRange(const Kernel& kernel, const DistanceRange& r, double wLo, double wHi,
-                         double& lo, double& hi) {
-    const double near = kernel.Value(r.min), far = kernel.Value(r.max);
+// [lo, hi] holding w·f(d) for w in [wLo, wHi], d in r and f the kernel, or every kernel of
+// the box of `moves` when its kernel moves (f is monotone in d).
+void WeightedKernelRange(const Kernel& kernel, const TermMotion* moves, const DistanceRange& r,
+                         double wLo, double wHi, double& lo, double& hi) {
+    double near, far;
+    if (moves && moves->kernelMoves) {
+        moves->kernels.ValueRange(r.min, r.max, far, near);
+    } else {
+        near = kernel.Value(r.min);
+        far = kernel.Value(r.max);
+    }
     lo = std::min({wLo * near, wLo * far, wHi * near, wHi * far});
     hi = std::max({wLo * near, wLo * far, wHi * near, wHi * far});
 }
@@ -82,9 +89,11 @@ Field::Field(std::vector<FieldTerm> terms, std::shared_ptr<const FieldMotion> mo
     for (size_t i = 0; i < terms.size(); ++i) {
         Bounds3 support = TermSupportBounds(terms[i]);
         if (motion && motion->Of(static_cast<int>(i)).moving) {
+            // Padded by the largest radius of the interval (an animated kernel's R_hi).
             const TermMotion& m = motion->Of(static_cast<int>(i));
-            support = m.centreBoxed ? m.centres.Padded(terms[i].kernel.Radius())
-                                    : support.Padded(m.reach);
+            const double radius = m.kernelMoves ? m.kernels.Radius() : terms[i].kernel.Radius();
+            if (m.kernelMoves) support = SkeletonBounds(terms[i].skeleton).Padded(radius);
+            support = m.centreBoxed ? m.centres.Padded(radius) : support.Padded(m.reach);
         }
         table->support.push_back(support);
     }
@@ -100,17 +109,17 @@ Field Field::Subset(std::vector<int> rows) const {
 }
 
 DistanceRange Field::SweptDistanceRange(int i, const Bounds3& box, double cutoff) const {
-    if (const FieldMotion* motion = table_->motion.get(); motion && motion->Of(i).moving) {
-        return MovingDistanceRange(motion->Of(i), table_->terms[i].skeleton, box, cutoff);
+    if (const TermMotion* moves = MotionOf(i)) {
+        return MovingDistanceRange(*moves, table_->terms[i].skeleton, box, cutoff);
     }
     return SkeletonDistanceRange(table_->terms[i].skeleton, box);
 }
 
 void Field::WeightRange(int i, double& lo, double& hi) const {
     lo = hi = table_->terms[i].weight;
-    if (const FieldMotion* motion = table_->motion.get(); motion && motion->Of(i).moving) {
-        lo = motion->Of(i).weightLo;
-        hi = motion->Of(i).weightHi;
+    if (const TermMotion* moves = MotionOf(i)) {
+        lo = moves->weightLo;
+        hi = moves->weightHi;
     }
 }
 
@@ -118,7 +127,11 @@ double Field::TermLipschitz(int i) const {
     const Kernel& k = table_->terms[i].kernel;
     double lo, hi;
     WeightRange(i, lo, hi);
-    return std::max(std::abs(lo), std::abs(hi)) * k.Bounds(0, k.Radius()).maxSlope;
+    const TermMotion* moves = MotionOf(i);
+    const double slope = moves && moves->kernelMoves
+                             ? moves->kernels.Bounds(0, moves->kernels.Radius()).maxSlope
+                             : k.Bounds(0, k.Radius()).maxSlope;
+    return std::max(std::abs(lo), std::abs(hi)) * slope;
 }
 
 double Field::TermValue(int i, const Vec3& p) const {
@@ -206,7 +219,9 @@ void Field::ActiveTerms(const Bounds3& box, std::span<const int32_t> terms,
     const TermTable& table = *table_;
     for (const int i : terms) {
         if (!MayReach(table.support[i], box)) continue;
-        const double radius = table.terms[i].kernel.Radius();
+        const TermMotion* moves = MotionOf(i);
+        const double radius = moves && moves->kernelMoves ? moves->kernels.Radius()
+                                                          : table.terms[i].kernel.Radius();
         if (SweptDistanceRange(i, box, radius).min < radius) out.push_back(i);
     }
 }
@@ -218,11 +233,14 @@ namespace {
 // `range`, also stores TermRange's numbers in it.
 bool AddTermBound(const FieldTerm& t, const TermMotion* moves, const Bounds3& box,
                   FieldBound& fb, TermValueRange* range) {
-    // A moving term (field_motion.h): its distance range over the interval, its weight range.
-    const DistanceRange r = moves ? MovingDistanceRange(*moves, t.skeleton, box, t.kernel.Radius())
+    // A moving term (field_motion.h): its distance range over the interval, its weight
+    // range, and its kernel box when its kernel moves.
+    const KernelBox* kernels = moves && moves->kernelMoves ? &moves->kernels : nullptr;
+    const double radius = kernels ? kernels->Radius() : t.kernel.Radius();
+    const DistanceRange r = moves ? MovingDistanceRange(*moves, t.skeleton, box, radius)
                                   : SkeletonDistanceRange(t.skeleton, box);
-    if (r.min >= t.kernel.Radius()) return false;  // f = f' = f'' = 0 on the whole box
-    KernelBounds kb = t.kernel.Bounds(r.min, r.max);
+    if (r.min >= radius) return false;  // f = f' = f'' = 0 on the whole box
+    KernelBounds kb = kernels ? kernels->Bounds(r.min, r.max) : t.kernel.Bounds(r.min, r.max);
     // w·f over w in [wLo, wHi] and f in [fmin, fmax] (f >= 0): the extremes are products
     // of ends (for a static term, of its one weight).
     const double wLo = moves ? moves->weightLo : t.weight;
@@ -312,15 +330,16 @@ void Field::ValueRangeAt(const Vec3& p, std::span<const int32_t> terms, double& 
     for (const int i : terms) {
         if (!MayReach(table.support[i], p)) continue;
         const FieldTerm& t = table.terms[i];
+        const TermMotion* moves = MotionOf(i);
         DistanceRange r;
-        if (const FieldMotion* motion = table.motion.get(); motion && motion->Of(i).moving) {
-            r = MovingDistanceRange(motion->Of(i), t.skeleton, p);
+        if (moves) {
+            r = MovingDistanceRange(*moves, t.skeleton, p);
         } else {
             r.min = r.max = SkeletonDistance(t.skeleton, p);
         }
         double wLo, wHi, termLo, termHi;
         WeightRange(i, wLo, wHi);
-        WeightedKernelRange(t.kernel, r, wLo, wHi, termLo, termHi);
+        WeightedKernelRange(t.kernel, moves, r, wLo, wHi, termLo, termHi);
         lo += termLo;
         hi += termHi;
     }
@@ -338,7 +357,8 @@ void Field::TermRange(int i, const Bounds3& box, double& lo, double& hi) const {
     }
     double wLo, wHi;
     WeightRange(i, wLo, wHi);
-    WeightedKernelRange(table_->terms[i].kernel, SweptDistanceRange(i, box), wLo, wHi, lo, hi);
+    WeightedKernelRange(table_->terms[i].kernel, MotionOf(i), SweptDistanceRange(i, box), wLo,
+                        wHi, lo, hi);
 }
 
 void Field::TermRangeAtRayTime(int i, const Bounds3& box, double& lo, double& hi) const {
@@ -346,8 +366,8 @@ void Field::TermRangeAtRayTime(int i, const Bounds3& box, double& lo, double& hi
                                                                       : nullptr;
     if (!now || !MayReach(table_->support[i], box)) return TermRange(i, box, lo, hi);
     const FieldTerm& t = now->Of(i, table_->terms[i]);
-    WeightedKernelRange(t.kernel, SkeletonDistanceRange(t.skeleton, box), t.weight, t.weight,
-                        lo, hi);
+    WeightedKernelRange(t.kernel, nullptr, SkeletonDistanceRange(t.skeleton, box), t.weight,
+                        t.weight, lo, hi);
 }
 
 Bounds3 Field::SupportBounds() const {

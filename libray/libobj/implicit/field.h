@@ -23,8 +23,9 @@
 // A field may move (field_motion.h: skeleton motion blur): its table then holds reference
 // terms and a FieldMotion. Every box function (Bound, TermRange, ActiveTerms, TermsMeeting,
 // SupportBounds, TermSupport) then holds for every time of the shutter interval: each
-// term's distance range swept over it (field_motion.h: the reach, or a point's centre box), weights over their intervals, and X infinite for a
-// moving non-convex kind; every point function (values, gradients, TermValue, TermAt) uses
+// term's distance range swept over it (field_motion.h: the reach, or a point's centre box),
+// weights over their intervals, an animated kernel over its parameter box (KernelBox, with
+// its largest radius for supports and cutoffs), and X infinite for a moving non-convex kind; every point function (values, gradients, TermValue, TermAt) uses
 // the terms at the calling thread's ray time (RayTimeScope).
 #pragma once
 
@@ -111,9 +112,15 @@ class Field {
     const Bounds3& TermSupport(int i) const { return table_->support[i]; }
     // |w|·max|f'| of row i at every time: its Lipschitz constant in space.
     double TermLipschitz(int i) const;
-    // How far row i's skeleton may move from its reference (0 for a static field).
+    // How far row i's support may reach beyond the reference term's (0 for a static
+    // field): its skeleton's reach, plus the growth of its kernel radius over the shutter
+    // when its kernel moves, so every point where the term is non-zero at some time lies
+    // within R_ref + TermReach of the reference skeleton.
     double TermReach(int i) const {
-        return table_->motion ? table_->motion->Of(i).reach : 0;
+        if (!table_->motion) return 0;
+        const TermMotion& m = table_->motion->Of(i);
+        return m.kernelMoves ? m.reach + (m.kernels.Radius() - table_->terms[i].kernel.Radius())
+                             : m.reach;
     }
     // The rows this field sums, in summation order.
     const std::vector<int>& Rows() const { return rows_; }
@@ -198,6 +205,11 @@ class Field {
         int i, const Bounds3& box,
         double cutoff = std::numeric_limits<double>::infinity()) const;
     void WeightRange(int i, double& lo, double& hi) const;
+    // Row i's motion when it moves, else null.
+    const TermMotion* MotionOf(int i) const {
+        const FieldMotion* motion = table_->motion.get();
+        return motion && motion->Of(i).moving ? &motion->Of(i) : nullptr;
+    }
     // Adds the deformation's bounds over the box (if any) to fb.
     void AddDeformationBound(const Bounds3& box, FieldBound& fb) const;
 

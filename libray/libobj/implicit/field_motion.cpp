@@ -69,7 +69,7 @@ TermsAtTime* FieldMotion::FindNow() const {
 const FieldTerm& TermsAtTime::Make(int row, const FieldTerm& reference) {
     if (!motion_->terms_[row].moving) return reference;
     FieldTerm& term = terms_[row];
-    if (stamp_[row] == 0) term = reference;  // name and kernel, once
+    if (stamp_[row] == 0) term = reference;  // the name (and any static part), once
     motion_->termAt_(row, time_, term);
     stamp_[row] = epoch_;
     return term;

@@ -9,8 +9,11 @@
 //     Hausdorff bound), so |d_t(p) − d_ref(p)| <= ρ for every p: distance ranges over a box
 //     widen to [max(0, dmin − ρ), dmax + ρ] and support boxes grow by ρ;
 //   - [weightLo, weightHi] holds the weight at every t (of one sign: the builder checks);
-//   - the kernel does not move (animated kernel parameters are refused with the shutter
-//     open);
+//   - a term whose `field` parameters are animated holds a KernelBox (kernel.h) holding
+//     its kernel at every t, and the box functions bound it over that box: supports,
+//     cutoffs and Lipschitz constants use its largest radius R_hi (the support of the term
+//     at t lies within R_hi + ρ of the reference skeleton), value ranges, slopes and
+//     curvatures KernelBox::Bounds; the others keep their one kernel;
 //   - for a point skeleton, a box holding its centre at every t (the interval ranges of its
 //     coordinates). It lies within the reach of the reference centre, and it bounds tighter:
 //     d_t(p) lies between p's nearest and farthest distances to the box, so a box's distance
@@ -31,6 +34,7 @@
 #include <vector>
 
 #include "libcommon/bounds.h"
+#include "libobj/implicit/kernel.h"
 
 namespace rs {
 
@@ -42,6 +46,8 @@ struct TermMotion {
     double weightLo = 0, weightHi = 0;
     bool centreBoxed = false;  // true: a moving point skeleton whose centre stays in `centres`
     Bounds3 centres;
+    bool kernelMoves = false;  // true: the kernel changes, and `kernels` holds it at every t
+    KernelBox kernels;
 };
 
 class FieldMotion;
@@ -71,8 +77,8 @@ class TermsAtTime {
 
 class FieldMotion {
   public:
-    // Sets term.skeleton and term.weight to their values at `time` for row `row` (the rest
-    // of `term` already holds the reference term's other members).
+    // Sets term.skeleton, term.weight and term.kernel to their values at `time` for row
+    // `row` (the rest of `term` already holds the reference term's other members).
     using TermAt = std::function<void(int row, double time, FieldTerm& term)>;
 
     FieldMotion(std::vector<TermMotion> terms, TermAt termAt);

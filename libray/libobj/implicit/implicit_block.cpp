@@ -10,19 +10,25 @@
 
 namespace rs {
 
-namespace {
-
-Kernel MakeKernel(const KernelSpec& k, const DeclaredNumbers& numbers, double time) {
-    const double a = numbers.At(k.params[0], time), b = numbers.At(k.params[1], time);
-    switch (k.kind) {
+Kernel KernelWithParameters(KernelKind kind, const double (&params)[3]) {
+    switch (kind) {
         case KernelKind::GascuelLinear:
-            return Kernel::GascuelLinear(a, b, numbers.At(k.params[2], time));
+            return Kernel::GascuelLinear(params[0], params[1], params[2]);
         case KernelKind::GascuelQuadratic:
-            return Kernel::GascuelQuadratic(a, b, numbers.At(k.params[2], time));
+            return Kernel::GascuelQuadratic(params[0], params[1], params[2]);
         default:
-            return Kernel::Blob(a, b);
+            return Kernel::Blob(params[0], params[1]);
     }
 }
+
+Kernel MakeKernelAt(const ImplicitDescription& d, size_t index, double time) {
+    const KernelSpec& k = d.kernels[d.skeletons[index].kernel];
+    double params[3] = {};
+    for (int i = 0; i < k.paramCount; ++i) params[i] = d.numbers.At(k.params[i], time);
+    return KernelWithParameters(k.kind, params);
+}
+
+namespace {
 
 // What is wrong with a skeleton's term, and the statement at fault: the skeleton's, or the
 // `field` statement of its kernel when the kernel's parameters are invalid.
@@ -113,7 +119,7 @@ TermError MakeTerm(const ImplicitDescription& d, size_t index, double time, Fiel
     term.name = name;
     term.weight = d.numbers.At(e.weight, time);
     const KernelSpec& kernel = d.kernels[e.kernel];
-    term.kernel = MakeKernel(kernel, d.numbers, time);
+    term.kernel = MakeKernelAt(d, index, time);
     if (!std::isfinite(term.weight)) {
         return {StringPrintf("skeleton '%s': weight is not finite", name.c_str()), e.place};
     }

@@ -32,6 +32,12 @@ struct BuiltImplicitBlock {
 bool IsAnimatedSkeleton(const ImplicitDescription& d, size_t index);
 bool HasAnimatedKernel(const ImplicitDescription& d, size_t index);
 
+// The kernel of `kind` with a `field` statement's parameters in its order (Gascuel
+// thickness, stiffness, radius; blob strength, radius), not validated.
+Kernel KernelWithParameters(KernelKind kind, const double (&params)[3]);
+// The kernel of skeleton `index` at `time`, not validated.
+Kernel MakeKernelAt(const ImplicitDescription& d, size_t index, double time);
+
 // The skeleton of skeleton `index` at `time`, or an error message for invalid parameters
 // (circle radius <= 0 or normal 0, cylinder radius < 0).
 std::string MakeSkeletonAt(const ImplicitDescription& d, size_t index, double time,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <tuple>
 #include <utility>
 #include <variant>
 
@@ -125,18 +126,37 @@ std::string SkeletonReach(NumberMotion& m, const SkeletonSpec& e, const char* wh
     return {};
 }
 
-// The motion of skeleton `index`, or an error message.
+// The box of skeleton `index`'s kernels over the interval (kernel.h): each parameter's
+// range; an error message when some corner is not a valid kernel, with `place` set to the
+// `field` statement.
+std::string KernelMotion(const ImplicitDescription& d, size_t index, NumberMotion& m,
+                         TermMotion& motion, StatementPlace& place) {
+    const KernelSpec& k = d.kernels[d.skeletons[index].kernel];
+    double lo[3] = {}, hi[3] = {};
+    for (int i = 0; i < k.paramCount; ++i) std::tie(lo[i], hi[i]) = m.RangeOf(k.params[i]);
+    if (!m.ok) return {};  // reported with the other unbounded numbers
+    motion.kernelMoves = true;
+    motion.kernels = KernelBox(KernelWithParameters(k.kind, lo), KernelWithParameters(k.kind, hi));
+    KernelStatus status = motion.kernels.Validate(d.names.Name(index));
+    if (status.ok) return {};
+    place = k.place;
+    return status.message;
+}
+
+// The motion of skeleton `index`, or an error message (about the statement at `place`,
+// set to the skeleton's, or its `field` statement's for an invalid kernel box).
 std::string TermMotionOf(const ImplicitDescription& d, size_t index, double referenceWeight,
-                         double t0, double t1, TermMotion& motion) {
+                         double t0, double t1, TermMotion& motion, StatementPlace& place) {
     const SkeletonSpec& e = d.skeletons[index];
     const char* who = d.names.Name(index).c_str();
-    if (HasAnimatedKernel(d, index)) {
-        return StringPrintf("skeleton '%s': animated field parameters cannot be motion "
-                            "blurred (shutter open); animate its skeleton or weight instead",
-                            who);
-    }
+    place = e.place;
     NumberMotion m(d, e, t0, t1);
     if (std::string error = SkeletonReach(m, e, who, motion.reach); !error.empty()) return error;
+    if (HasAnimatedKernel(d, index)) {
+        if (std::string error = KernelMotion(d, index, m, motion, place); !error.empty()) {
+            return error;
+        }
+    }
     const auto [wLo, wHi] = m.RangeOf(e.weight);
     if (!m.ok || !std::isfinite(wLo) || !std::isfinite(wHi)) {
         return StringPrintf("skeleton '%s': its motion during the shutter cannot be bounded "
@@ -171,17 +191,16 @@ MovingTerms BuildMovingTerms(const std::shared_ptr<const ImplicitDescription>& b
     std::vector<TermMotion> motions(d.skeletons.size());
     for (size_t i = 0; i < d.skeletons.size(); ++i) {
         if (!IsAnimatedSkeleton(d, i)) continue;
-        out.error = TermMotionOf(d, i, reference[i].weight, t0, t1, motions[i]);
-        if (!out.error.empty()) {
-            out.place = d.skeletons[i].place;
-            return out;
-        }
+        out.error = TermMotionOf(d, i, reference[i].weight, t0, t1, motions[i], out.place);
+        if (!out.error.empty()) return out;
     }
-    // A moving term at a ray time: its skeleton and weight (the kernel does not move).
-    // The interval checks above keep MakeSkeletonAt from failing inside [t0, t1]. `term`
-    // starts as the reference term, whose static numbers are those of every time: a point
-    // (the commonest moving skeleton) and the weight get only their animated numbers anew.
-    std::vector<uint8_t> animated(d.skeletons.size(), 0);  // bits 0–2 a point's coordinates, 3 the weight
+    // A moving term at a ray time: its skeleton, weight and kernel. The interval checks
+    // above keep MakeSkeletonAt from failing inside [t0, t1], and the kernel there lies in
+    // its valid box. `term` starts as the reference term, whose static numbers are those of
+    // every time: a point (the commonest moving skeleton), the weight and the kernel get
+    // only their animated numbers anew.
+    // Bits 0–2: a point's coordinates, 3 the weight, 4 the kernel.
+    std::vector<uint8_t> animated(d.skeletons.size(), 0);
     for (size_t i = 0; i < d.skeletons.size(); ++i) {
         const SkeletonSpec& e = d.skeletons[i];
         if (e.kind == SkeletonKind::Point) {
@@ -190,6 +209,7 @@ MovingTerms BuildMovingTerms(const std::shared_ptr<const ImplicitDescription>& b
             }
         }
         if (d.numbers.IsAnimated(e.weight)) animated[i] |= 8;
+        if (HasAnimatedKernel(d, i)) animated[i] |= 16;
     }
     auto termAt = [block, animated = std::move(animated)](int row, double time, FieldTerm& term) {
         const ImplicitDescription& b = *block;
@@ -204,6 +224,7 @@ MovingTerms BuildMovingTerms(const std::shared_ptr<const ImplicitDescription>& b
             MakeSkeletonAt(b, static_cast<size_t>(row), time, term.skeleton);
         }
         if (changes & 8) term.weight = b.numbers.At(e.weight, time);
+        if (changes & 16) term.kernel = MakeKernelAt(b, static_cast<size_t>(row), time);
     };
     out.motion = std::make_shared<const FieldMotion>(std::move(motions), std::move(termAt));
     out.reference = std::move(reference);

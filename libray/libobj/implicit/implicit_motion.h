@@ -14,7 +14,9 @@
 //     unit normal (axis) turns by |Δn̂| <= min(2, 2|ΔN|/|N|) (N the unnormalised vector):
 //     the rotation taking the reference normal to the moved one moves a point at distance
 //     ρ from the axis by at most ρ|Δn̂|;
-// each rounded up by a relative 1e-12. The weight interval is its range.
+// each rounded up by a relative 1e-12. The weight interval is its range. A skeleton whose
+// `field` parameters are animated gets the box of their ranges (KernelBox), every corner
+// of which must be a valid kernel.
 #pragma once
 
 #include <memory>
@@ -29,9 +31,10 @@ namespace rs {
 struct MovingTerms {
     std::vector<FieldTerm> reference;
     std::shared_ptr<const FieldMotion> motion;
-    // Empty on success; else what cannot move (an animated kernel, a number with no
-    // interval bound, a weight changing sign, a circle or cylinder invalid at some time),
-    // naming the skeleton, with `place` its statement.
+    // Empty on success; else what cannot move (a number with no interval bound, a weight
+    // changing sign, a circle or cylinder invalid at some time, a kernel box with an
+    // invalid corner), naming the skeleton, with `place` its statement (its `field`
+    // statement for a kernel box).
     std::string error;
     StatementPlace place;
 };

@@ -202,8 +202,10 @@ Field ImplicitSurface::MovingField(double t0, double t1, double* relativeReach) 
         for (size_t i = 0; i < moving.reference.size(); ++i) {
             const TermMotion& m = moving.motion->Of(static_cast<int>(i));
             if (!m.moving) continue;
-            *relativeReach =
-                std::max(*relativeReach, m.reach / moving.reference[i].kernel.Radius());
+            // A radius changing by ΔR loosens the swept bounds as a skeleton moving by ΔR.
+            const double spread = m.kernelMoves ? m.kernels.Radius() - m.kernels.Lo().Radius() : 0;
+            *relativeReach = std::max(*relativeReach,
+                                      (m.reach + spread) / moving.reference[i].kernel.Radius());
         }
     }
     return Field(std::move(moving.reference), std::move(moving.motion));

@@ -48,8 +48,9 @@ class ImplicitSurface final : public Primitive {
     // it open, as moving fields over [frameTime, frameTime + shutter] (implicit_motion.h),
     // each ray then seeing the skeletons at its own time. The shutter is cut into K equal
     // time slices, each with its own swept bounds and method, K the smallest in 1..8 with
-    // every moving skeleton's reach over a slice at most kSliceReach of its influence
-    // radius (loose swept bounds cost the search more than K builds); `contact auto` finds
+    // every moving skeleton's reach over a slice, plus the spread of an animated kernel's
+    // radius, at most kSliceReach of its influence radius (loose swept bounds cost the
+    // search more than K builds); `contact auto` finds
     // one set of pairs for the whole shutter (FrameContacts). Fails (Abort, at the
     // skeleton) when the motion cannot be bounded. Method polynomial,
     // whose terms cannot move, is replaced by kb89 (the same field) with the shutter open.
@@ -83,8 +84,9 @@ class ImplicitSurface final : public Primitive {
   private:
     // Makes the method for the current terms and options and counts the time.
     void Build();
-    // The moving field of the animated terms over [t0, t1] (PrepareFrame), and its largest
-    // reach relative to the smallest influence radius of its moving terms.
+    // The moving field of the animated terms over [t0, t1] (PrepareFrame), and the largest
+    // of its moving terms' reach plus radius spread (R_hi − R_lo of an animated kernel),
+    // relative to the term's influence radius.
     Field MovingField(double t0, double t1, double* relativeReach = nullptr) const;
     // Cuts [t0, t1] into time slices (PrepareFrame).
     void MakeTimeSlices(double t0, double t1);

@@ -126,4 +126,40 @@ inline double Kernel::PieceDerivative(int piece, double r) const {
     }
 }
 
+// Every kernel of one kind whose parameters lie in a box: thickness, stiffness and radius
+// (Gascuel) or strength and radius (blob) each between its value in Lo() and in Hi() (the
+// kernels of a term whose `field` parameters are animated, over an open shutter:
+// field_motion.h). The bounds rest on these facts about valid kernels (proofs beside
+// KernelBox::Bounds in kernel.cpp; tests/unit/implicit/kernel_test.cpp samples them):
+//   Gascuel: f rises with e and with R, and is affine in k (for fixed r and the others);
+//   blob: f rises with s and with R.
+// Each validity condition (e > 0, R − e > 0, k > 0, k(R − e) <= 3; s > 0, R > 0) is monotone
+// in each parameter, so when every corner of the box is valid every kernel in it is.
+class KernelBox {
+  public:
+    KernelBox() = default;
+    // `lo` and `hi` of one kind, each parameter of lo at most hi's.
+    KernelBox(const Kernel& lo, const Kernel& hi) : lo_(lo), hi_(hi) {}
+
+    const Kernel& Lo() const { return lo_; }
+    const Kernel& Hi() const { return hi_; }
+    // The largest radius: every kernel of the box is 0 for r >= Radius().
+    double Radius() const { return hi_.Radius(); }
+
+    // Validate() of every corner; the first invalid one's message, with the box's ranges.
+    KernelStatus Validate(const std::string& skeletonName) const;
+
+    // Bounds holding for every kernel of the box over [rmin, rmax] (0 <= rmin <= rmax), with
+    // Kernel::Bounds' contract (valueMin, valueMax: the exact range over the box, up to the
+    // rounding of the corner kernels' values; maxSlope, maxCurvature: upper bounds, exact
+    // up to rounding when the box is one kernel, looser the wider it is, since the pieces'
+    // variables are bounded separately). Requires a valid box.
+    KernelBounds Bounds(double rmin, double rmax) const;
+    // valueMin and valueMax of Bounds alone: [min, max] of f over the box and [rmin, rmax].
+    void ValueRange(double rmin, double rmax, double& lo, double& hi) const;
+
+  private:
+    Kernel lo_, hi_;
+};
+
 }  // namespace rs

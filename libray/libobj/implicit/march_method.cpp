@@ -8,9 +8,13 @@ namespace rs {
 
 double DefaultMarchStep(const Field& field) {
     double smallest = std::numeric_limits<double>::infinity();
-    for (const FieldTerm& t : field.Terms()) {
+    const FieldMotion* motion = field.Motion();
+    for (size_t i = 0; i < field.Terms().size(); ++i) {
+        const FieldTerm& t = field.Terms()[i];
         if (t.weight <= 0) continue;
-        const Kernel& k = t.kernel;
+        // An animated kernel: its smallest thickness and radius over the shutter.
+        const TermMotion* moves = motion ? &motion->Of(static_cast<int>(i)) : nullptr;
+        const Kernel& k = moves && moves->kernelMoves ? moves->kernels.Lo() : t.kernel;
         smallest = std::min(smallest, k.Kind() == KernelKind::Blob ? 0.5 * k.Radius()
                                                                    : k.Thickness());
     }

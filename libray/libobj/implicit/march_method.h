@@ -21,7 +21,8 @@ namespace rs {
 // The default step: a quarter of the smallest "thickness" of the positive terms (Gascuel
 // kernels: e; blob kernel: R/2, about the radius where f falls to half its peak,
 // R·sqrt(1 − sqrt(1/2)) = 0.54R), so a lone skeleton's sphere (diameter 2e) gets at least 8
-// samples across its diameter. 1 when there is no positive term.
+// samples across its diameter; for a moving field, the smallest over the shutter (an
+// animated kernel's lowest corner). 1 when there is no positive term.
 double DefaultMarchStep(const Field& field);
 
 class MarchMethod final : public IntersectionMethod {

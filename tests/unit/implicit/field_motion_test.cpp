@@ -1,13 +1,16 @@
 // Swept bounds of a moving field (field_motion.h) against dense sampling over space and
 // time: random skeletons of every kind translated at random velocities during [0, 1]
 // (reference at 0.5, reach |v|/2: the exact Hausdorff distance of a translation; a point's
-// centre box, the box of the segment it sweeps), with weights varying by ±15%. Every box function must hold at every sampled (point, time),
+// centre box, the box of the segment it sweeps), with weights varying by ±15% and, for
+// half the terms, kernels of every kind whose parameters change by up to ±30% (their
+// KernelBox). Every box function must hold at every sampled (point, time),
 // and point evaluations at a ray time must equal the static field of that time, bit for
 // bit.
 #include "libobj/implicit/field.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -43,15 +46,49 @@ Skeleton Translated(Skeleton s, const Vec3& offset) {
     return s;
 }
 
+// The kernel of a's kind whose every parameter goes linearly from a's (u = 0) to b's (u = 1).
+Kernel KernelBetween(const Kernel& a, const Kernel& b, double u) {
+    const auto mix = [u](double x, double y) { return x + (y - x) * u; };
+    const double radius = mix(a.Radius(), b.Radius());
+    if (a.Kind() == KernelKind::Blob) return Kernel::Blob(mix(a.Strength(), b.Strength()), radius);
+    const double e = mix(a.Thickness(), b.Thickness()), k = mix(a.Stiffness(), b.Stiffness());
+    return a.Kind() == KernelKind::GascuelLinear ? Kernel::GascuelLinear(e, k, radius)
+                                                 : Kernel::GascuelQuadratic(e, k, radius);
+}
+
+// The box of the kernels between a and b: each parameter's smaller and larger value.
+KernelBox BoxBetween(const Kernel& a, const Kernel& b) {
+    Kernel lo = a, hi = b;
+    if (a.Kind() == KernelKind::Blob) {
+        lo = Kernel::Blob(std::min(a.Strength(), b.Strength()), std::min(a.Radius(), b.Radius()));
+        hi = Kernel::Blob(std::max(a.Strength(), b.Strength()), std::max(a.Radius(), b.Radius()));
+    } else {
+        const auto make = [&](double e, double k, double r) {
+            return a.Kind() == KernelKind::GascuelLinear ? Kernel::GascuelLinear(e, k, r)
+                                                         : Kernel::GascuelQuadratic(e, k, r);
+        };
+        lo = make(std::min(a.Thickness(), b.Thickness()), std::min(a.Stiffness(), b.Stiffness()),
+                  std::min(a.Radius(), b.Radius()));
+        hi = make(std::max(a.Thickness(), b.Thickness()), std::max(a.Stiffness(), b.Stiffness()),
+                  std::max(a.Radius(), b.Radius()));
+    }
+    return KernelBox(lo, hi);
+}
+
 struct MovingSet {
     std::vector<FieldTerm> reference;
     std::vector<Vec3> velocity;
+    // Animated kernels: where kernelMoves[i], term i's kernel at t is
+    // KernelBetween(kernelStart[i], kernelEnd[i], t) (the reference's at t = 0.5).
+    std::vector<bool> kernelMoves;
+    std::vector<Kernel> kernelStart, kernelEnd;
     // The terms at time t: reference skeletons moved by v(t − 0.5), weights w(1 + 0.3(t − 0.5)).
     std::vector<FieldTerm> At(double t) const {
         std::vector<FieldTerm> out = reference;
         for (size_t i = 0; i < out.size(); ++i) {
             out[i].skeleton = Translated(reference[i].skeleton, velocity[i] * (t - 0.5));
             out[i].weight = reference[i].weight * (1 + 0.3 * (t - 0.5));
+            if (kernelMoves[i]) out[i].kernel = KernelBetween(kernelStart[i], kernelEnd[i], t);
         }
         return out;
     }
@@ -69,11 +106,16 @@ struct MovingSet {
                 motion[i].centres = Bounds3(point->center - velocity[i] * 0.5,
                                             point->center + velocity[i] * 0.5);
             }
+            if (kernelMoves[i]) {
+                motion[i].kernelMoves = true;
+                motion[i].kernels = BoxBetween(kernelStart[i], kernelEnd[i]);
+            }
         }
         auto at = [set = *this](int row, double t, FieldTerm& term) {
             const FieldTerm moved = set.At(t)[row];
             term.skeleton = moved.skeleton;
             term.weight = moved.weight;
+            term.kernel = moved.kernel;
         };
         return Field(reference, std::make_shared<const FieldMotion>(motion, at));
     }
@@ -89,6 +131,29 @@ MovingSet RandomMovingSet(Rng& rng) {
         const double e = Uniform(rng, 0.1, 0.5), r = e + Uniform(rng, 0.2, 0.8);
         t.kernel = Kernel::GascuelQuadratic(e, Uniform(rng, 0.1, 3.0 / (r - e)), r);
         t.weight = rng.Uniform() < 0.2 ? -Uniform(rng, 0.2, 1) : Uniform(rng, 0.5, 2);
+        // Half the terms get a kernel of a random kind whose parameters change by up to
+        // ±30 % during [0, 1], every corner of their box valid.
+        const bool kernelMoves = rng.Uniform() < 0.5;
+        Kernel start = t.kernel, end = t.kernel;
+        while (kernelMoves) {
+            const auto vary = [&](double v) { return v * Uniform(rng, 0.7, 1.3); };
+            const int kind = static_cast<int>(rng.Uniform() * 3);
+            const double e0 = Uniform(rng, 0.1, 0.5), r0 = e0 + Uniform(rng, 0.2, 0.8);
+            const double k0 = Uniform(rng, 0.1, 3.0 / (r0 - e0));
+            if (kind == 2) {
+                start = Kernel::Blob(Uniform(rng, 0.5, 2), r0);
+                end = Kernel::Blob(vary(start.Strength()), vary(r0));
+            } else {
+                const auto make = kind == 0 ? Kernel::GascuelLinear : Kernel::GascuelQuadratic;
+                start = make(e0, k0, r0);
+                end = make(vary(e0), vary(k0), vary(r0));
+            }
+            if (BoxBetween(start, end).Validate("t").ok) break;
+        }
+        if (kernelMoves) t.kernel = KernelBetween(start, end, 0.5);
+        set.kernelMoves.push_back(kernelMoves);
+        set.kernelStart.push_back(start);
+        set.kernelEnd.push_back(end);
         set.reference.push_back(t);
         set.velocity.push_back(testing::RandomPoint(rng, -1.5, 1.5));
     }
@@ -146,7 +211,15 @@ TEST(FieldMotion, SweptBoundsHoldAtEverySampledPointAndTime) {
                     if (tv != 0) {
                         EXPECT_TRUE(moving.TermSupport(i).Contains(p));
                         EXPECT_NE(std::find(active.begin(), active.end(), i), active.end());
+                        // Within the reference's radius plus TermReach of its skeleton.
+                        const FieldTerm& ref = moving.Terms()[i];
+                        EXPECT_LT(SkeletonDistance(ref.skeleton, p),
+                                  ref.kernel.Radius() + moving.TermReach(i));
                     }
+                    // TermLipschitz, along a short step from p at this time.
+                    const Vec3 q = p + testing::RandomUnit(rng) * 1e-3;
+                    EXPECT_LE(std::abs(moving.TermValue(i, q) - tv),
+                              moving.TermLipschitz(i) * 1e-3 * (1 + 1e-9) + 1e-12);
                 }
                 ++checked;
             }
