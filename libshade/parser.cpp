@@ -590,7 +590,7 @@ std::shared_ptr<Object> Parser::ParseInstance() {
         if (std::shared_ptr<Texture> tex = ParseTexture()) textures.push_back(std::move(tex));
     if (!node) return nullptr;
     node->parentFromObject = std::move(transforms);
-    node->textures = std::move(textures);
+    node->SetTextures(std::move(textures));
     return node;
 }
 

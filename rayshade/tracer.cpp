@@ -97,11 +97,11 @@ void ApplyPathTextures(const Ray& ray, const HitRecord& hit,
                 ctx.nodeFromPrimitive = ctx.nodeFromPrimitive.Then(t);
             }
         }
-        if (!texturing || hit.path[i]->textures.empty()) continue;
+        if (!texturing || hit.path[i]->Textures().empty()) continue;
         ctx.point = p;
         ctx.normal = n;
         ctx.geometricNormal = ng;
-        for (const auto& texture : hit.path[i]->textures) texture->Apply(ctx, surface);
+        for (const auto& texture : hit.path[i]->Textures()) texture->Apply(ctx, surface);
         n = ctx.normal;
     }
 }
@@ -172,7 +172,7 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
     std::vector<Transform> animated;
     int lastTextured = -1;
     for (int i = 0; i < hit.pathLength; ++i) {
-        if (textured && !hit.path[i]->textures.empty()) lastTextured = i;
+        if (textured && !hit.path[i]->Textures().empty()) lastTextured = i;
         const TransformList& list = hit.path[i]->parentFromObject;
         if (list.IsIdentity()) {
             nodeTransforms[i] = nullptr;
@@ -375,7 +375,7 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
         // enters it. A CSG hit carries the enter flag, and with no textures on its path the
         // surface is the untextured one, so Evaluate (normals, transforms) is not needed.
         const bool textured = std::any_of(hit.path, hit.path + hit.pathLength,
-                                          [](const Object* o) { return !o->textures.empty(); });
+                                          [](const Object* o) { return !o->Textures().empty(); });
         const Surface* surface = &UntexturedSurface(hit);
         bool entering = hit.enterOverride == 1;
         std::optional<ShadingPoint> sp;

@@ -10,21 +10,30 @@ const CounterId Object::kBoundsTests = RegisterCounter("bounding box tests");
 
 std::shared_ptr<Object> Object::MakePrimitive(std::shared_ptr<Primitive> p) {
     auto o = std::make_shared<Object>(Key{}, Kind::Primitive);
-    o->primitive_ = std::move(p);
-    o->counters_ = &o->primitive_->Counters();
+    o->counters_ = &p->Counters();
+    o->node_ = std::move(p);
     return o;
 }
 
 std::shared_ptr<Object> Object::MakeAggregate(std::shared_ptr<Aggregate> a) {
     auto o = std::make_shared<Object>(Key{}, Kind::Aggregate);
-    o->aggregate_ = std::move(a);
+    o->node_ = std::move(a);
     return o;
 }
 
 std::shared_ptr<Object> Object::MakeInstance(std::shared_ptr<Object> of) {
     auto o = std::make_shared<Object>(Key{}, Kind::Instance);
-    o->instanceOf_ = std::move(of);
+    o->node_ = std::move(of);
     return o;
+}
+
+void Object::SetTextures(std::vector<std::shared_ptr<const Texture>> textures) {
+    if (textures.empty()) {
+        textures_.reset();
+    } else {
+        textures_ = std::make_unique<const std::vector<std::shared_ptr<const Texture>>>(
+            std::move(textures));
+    }
 }
 
 bool Object::IntersectGeneral(const Ray& rayParent, double tMin, double& tMax,
@@ -40,8 +49,8 @@ bool Object::IntersectGeneral(const Ray& rayParent, double tMin, double& tMax,
             case Kind::Aggregate:
             case Kind::Instance:
                 if (!BoxAdmits(ray, tMin, tMax)) return false;
-                found = kind_ == Kind::Aggregate ? aggregate_->Intersect(ray, tMin, tMax, hit)
-                                                 : instanceOf_->Intersect(ray, tMin, tMax, hit);
+                found = kind_ == Kind::Aggregate ? AggregateNode()->Intersect(ray, tMin, tMax, hit)
+                                                 : InstanceNode()->Intersect(ray, tMin, tMax, hit);
                 break;
         }
         if (found && hit.pathLength < HitRecord::kMaxPath) hit.path[hit.pathLength++] = this;
@@ -57,18 +66,18 @@ bool Object::OccludedGeneral(const Ray& rayParent, double tMin, double tMax) con
     switch (kind_) {
         case Kind::Primitive: return OccludedPrimitive(ray, tMin, tMax);
         case Kind::Aggregate:
-            return BoxAdmits(ray, tMin, tMax) && aggregate_->Occluded(ray, tMin, tMax);
+            return BoxAdmits(ray, tMin, tMax) && AggregateNode()->Occluded(ray, tMin, tMax);
         case Kind::Instance:
-            return BoxAdmits(ray, tMin, tMax) && instanceOf_->Occluded(ray, tMin, tMax);
+            return BoxAdmits(ray, tMin, tMax) && InstanceNode()->Occluded(ray, tMin, tMax);
     }
     return false;
 }
 
 bool Object::IsClosed() const {
     switch (kind_) {
-        case Kind::Primitive: return primitive_->IsClosed();
-        case Kind::Aggregate: return aggregate_->IsClosed();
-        case Kind::Instance: return instanceOf_->IsClosed();
+        case Kind::Primitive: return PrimitiveNode()->IsClosed();
+        case Kind::Aggregate: return AggregateNode()->IsClosed();
+        case Kind::Instance: return InstanceNode()->IsClosed();
     }
     return false;
 }
@@ -80,26 +89,26 @@ void Object::PrepareFrame(double frameTime, double shutter) {
 
     switch (kind_) {
         case Kind::Primitive:
-            primitive_->PrepareFrame(frameTime, shutter);
-            bounded_ = primitive_->IsBounded();
-            boundsObject_ = primitive_->Bounds();
+            PrimitiveNode()->PrepareFrame(frameTime, shutter);
+            bounded_ = PrimitiveNode()->IsBounded();
+            boundsObject_ = PrimitiveNode()->Bounds();
             break;
         case Kind::Aggregate:
-            for (const auto& child : aggregate_->Children()) child->PrepareFrame(frameTime, shutter);
-            aggregate_->PrepareFrame(frameTime, shutter);
+            for (const auto& child : AggregateNode()->Children()) child->PrepareFrame(frameTime, shutter);
+            AggregateNode()->PrepareFrame(frameTime, shutter);
             // The aggregate's box covers only its bounded children. With an unbounded child
             // the node as a whole is unbounded, so neither its own box pre-test nor its
             // parent's clips that child away (spec §6 recommends fixing the original's
             // clipping; top-level planes must never be clipped).
-            bounded_ = aggregate_->IsBounded() &&
-                       std::all_of(aggregate_->Children().begin(), aggregate_->Children().end(),
+            bounded_ = AggregateNode()->IsBounded() &&
+                       std::all_of(AggregateNode()->Children().begin(), AggregateNode()->Children().end(),
                                    [](const auto& child) { return child->IsBounded(); });
-            boundsObject_ = aggregate_->Bounds();
+            boundsObject_ = AggregateNode()->Bounds();
             break;
         case Kind::Instance:
-            instanceOf_->PrepareFrame(frameTime, shutter);
-            bounded_ = instanceOf_->IsBounded();
-            boundsObject_ = instanceOf_->BoundsInParent();
+            InstanceNode()->PrepareFrame(frameTime, shutter);
+            bounded_ = InstanceNode()->IsBounded();
+            boundsObject_ = InstanceNode()->BoundsInParent();
             break;
     }
     if (!bounded_) {
@@ -126,7 +135,7 @@ void Object::PrepareFrame(double frameTime, double shutter) {
 std::string Object::TypeName() const {
     switch (kind_) {
         case Kind::Primitive: return counters_->typeName;
-        case Kind::Aggregate: return aggregate_->TypeName();
+        case Kind::Aggregate: return AggregateNode()->TypeName();
         case Kind::Instance: return "instance";
     }
     return "object";
@@ -135,10 +144,10 @@ std::string Object::TypeName() const {
 long Object::PrimitiveCount() const {
     switch (kind_) {
         case Kind::Primitive: return 1;
-        case Kind::Instance: return instanceOf_->PrimitiveCount();
+        case Kind::Instance: return InstanceNode()->PrimitiveCount();
         case Kind::Aggregate: {
             long n = 0;
-            for (const auto& c : aggregate_->Children()) n += c->PrimitiveCount();
+            for (const auto& c : AggregateNode()->Children()) n += c->PrimitiveCount();
             return n;
         }
     }

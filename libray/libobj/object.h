@@ -5,7 +5,9 @@
 // the node's object space to its parent's space (parentFromObject).
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -21,23 +23,30 @@ class Texture;
 
 class Object {
   public:
-    enum class Kind { Primitive, Aggregate, Instance };
+    enum class Kind : uint8_t { Primitive, Aggregate, Instance };
 
     static std::shared_ptr<Object> MakePrimitive(std::shared_ptr<Primitive> p);
     static std::shared_ptr<Object> MakeAggregate(std::shared_ptr<Aggregate> a);
     static std::shared_ptr<Object> MakeInstance(std::shared_ptr<Object> of);
 
     Kind kind() const { return kind_; }
-    const Primitive* primitive() const { return primitive_.get(); }
-    Primitive* primitive() { return primitive_.get(); }
-    const Aggregate* aggregate() const { return aggregate_.get(); }
-    const Object* instanceOf() const { return instanceOf_.get(); }
-    Object* instanceOf() { return instanceOf_.get(); }
+    // What the node holds; null when it is of another kind.
+    const Primitive* primitive() const { return Is(Kind::Primitive) ? PrimitiveNode() : nullptr; }
+    Primitive* primitive() { return Is(Kind::Primitive) ? PrimitiveNode() : nullptr; }
+    const Aggregate* aggregate() const { return Is(Kind::Aggregate) ? AggregateNode() : nullptr; }
+    const Object* instanceOf() const { return Is(Kind::Instance) ? InstanceNode() : nullptr; }
+    Object* instanceOf() { return Is(Kind::Instance) ? InstanceNode() : nullptr; }
 
     std::string name;  // the `name` it was defined under, for reports; may be empty
     TransformList parentFromObject;
     std::shared_ptr<const Surface> surface;  // null: inherit from the nearest ancestor
-    std::vector<std::shared_ptr<const Texture>> textures;  // applied in written order
+
+    // The node's own textures, applied in written order (most nodes have none).
+    std::span<const std::shared_ptr<const Texture>> Textures() const {
+        if (!textures_) return {};
+        return *textures_;
+    }
+    void SetTextures(std::vector<std::shared_ptr<const Texture>> textures);
 
     // Nearest hit with tMin < t < tMax for a ray given in the PARENT's space. On success
     // shrinks tMax, fills `hit`, appends this node to hit.path and returns true.
@@ -97,11 +106,12 @@ class Object {
     bool IntersectPrimitive(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const {
         Count(counters_->tests);
         PrimitiveHit ph;
-        if (!primitive_->Intersect(ray, tMin, tMax, ph)) return false;
+        const Primitive* primitive = PrimitiveNode();
+        if (!primitive->Intersect(ray, tMin, tMax, ph)) return false;
         Count(counters_->hits);
         tMax = ph.t;
         hit.prim = ph;
-        hit.primitive = primitive_.get();
+        hit.primitive = primitive;
         hit.path[0] = this;
         hit.pathLength = 1;
         hit.enterOverride = -1;
@@ -111,7 +121,7 @@ class Object {
     bool OccludedPrimitive(const Ray& ray, double tMin, double tMax) const {
         Count(counters_->tests);
         PrimitiveHit ph;
-        if (!primitive_->Intersect(ray, tMin, tMax, ph)) return false;
+        if (!PrimitiveNode()->Intersect(ray, tMin, tMax, ph)) return false;
         Count(counters_->hits);
         return true;
     }
@@ -128,16 +138,22 @@ class Object {
 
     static const CounterId kBoundsTests;
 
-    Kind kind_;
-    std::shared_ptr<Primitive> primitive_;
-    const IntersectionCounters* counters_ = nullptr;  // the primitive's, looked up once
-    std::shared_ptr<Aggregate> aggregate_;
-    std::shared_ptr<Object> instanceOf_;
+    // The held primitive, aggregate or instanced node, by kind_. One owner for the three
+    // kinds, and fields ordered for packing: a large mesh has one node per triangle, and
+    // its nodes' memory (first touched while parsing) is a good part of the setup's cost.
+    bool Is(Kind k) const { return kind_ == k; }
+    Primitive* PrimitiveNode() const { return static_cast<Primitive*>(node_.get()); }
+    Aggregate* AggregateNode() const { return static_cast<Aggregate*>(node_.get()); }
+    Object* InstanceNode() const { return static_cast<Object*>(node_.get()); }
 
+    std::shared_ptr<void> node_;
+    const IntersectionCounters* counters_ = nullptr;  // the primitive's, looked up once
+    std::unique_ptr<const std::vector<std::shared_ptr<const Texture>>> textures_;  // null: none
     Bounds3 boundsObject_;   // bounds in the node's own space (for the ray pre-test)
     Bounds3 boundsInParent_;
-    bool bounded_ = false;
     double preparedFor_ = -1e300;
+    Kind kind_;
+    bool bounded_ = false;
 };
 
 }  // namespace rs

@@ -40,7 +40,7 @@ Polygon::Polygon(const std::vector<Vec3>& vertices, bool flip) {
         axisU_ = 0;
         axisV_ = 1;
     }
-    vertexCount_ = vertices.size();
+    vertexCount_ = static_cast<uint32_t>(vertices.size());
     double* projected = inlineProjected_;
     if (vertexCount_ > kInlineVertices) {
         heapProjected_ = std::make_unique<double[]>(2 * vertexCount_);
@@ -54,44 +54,48 @@ Polygon::Polygon(const std::vector<Vec3>& vertices, bool flip) {
     if (vertexCount_ > kBandedEdges) BuildBands();
 }
 
-int Polygon::Band(double v) const {
+int Polygon::Bands::Of(double v) const {
     // Non-decreasing in v: the subtraction and the multiplication by a positive constant
     // are rounded monotonically, floor and the clamp keep the order.
-    const double f = std::floor((v - bandLo_) * bandScale_);
+    const double f = std::floor((v - lo) * scale);
     if (!(f > 0)) return 0;
-    return f >= bandCount_ - 1 ? bandCount_ - 1 : static_cast<int>(f);
+    return f >= count - 1 ? count - 1 : static_cast<int>(f);
 }
 
 void Polygon::BuildBands() {
     const size_t count = vertexCount_;
-    bandLo_ = bandHi_ = projected_[1];
+    auto bands = std::make_unique<Bands>();
+    bands->lo = bands->hi = projected_[1];
     for (size_t i = 0; i < count; ++i) {
-        bandLo_ = std::min(bandLo_, projected_[2 * i + 1]);
-        bandHi_ = std::max(bandHi_, projected_[2 * i + 1]);
+        bands->lo = std::min(bands->lo, projected_[2 * i + 1]);
+        bands->hi = std::max(bands->hi, projected_[2 * i + 1]);
     }
     // About four edges per band; a flat range (no edge can be crossed) keeps one band.
-    bandCount_ = bandHi_ > bandLo_ ? static_cast<int>(count / 4) : 1;
-    bandScale_ = bandHi_ > bandLo_ ? bandCount_ / (bandHi_ - bandLo_) : 0;
+    const bool flat = !(bands->hi > bands->lo);
+    bands->count = flat ? 1 : static_cast<int>(count / 4);
+    bands->scale = flat ? 0 : bands->count / (bands->hi - bands->lo);
     const auto edgeBands = [&](size_t e, int& first, int& last) {
         const double v0 = projected_[2 * ((e + count - 1) % count) + 1], v1 = projected_[2 * e + 1];
-        first = Band(std::min(v0, v1));
-        last = Band(std::max(v0, v1));
+        first = bands->Of(std::min(v0, v1));
+        last = bands->Of(std::max(v0, v1));
     };
     // Two passes: count the entries of each band, then fill them in.
-    bandStart_.assign(bandCount_ + 1, 0);
+    std::vector<uint32_t>& start = bands->start;
+    start.assign(bands->count + 1, 0);
     for (size_t e = 0; e < count; ++e) {
         int first, last;
         edgeBands(e, first, last);
-        for (int b = first; b <= last; ++b) ++bandStart_[b + 1];
+        for (int b = first; b <= last; ++b) ++start[b + 1];
     }
-    for (int b = 0; b < bandCount_; ++b) bandStart_[b + 1] += bandStart_[b];
-    bandEdges_.resize(bandStart_[bandCount_]);
-    std::vector<uint32_t> cursor(bandStart_.begin(), bandStart_.end() - 1);
+    for (int b = 0; b < bands->count; ++b) start[b + 1] += start[b];
+    bands->edges.resize(start[bands->count]);
+    std::vector<uint32_t> cursor(start.begin(), start.end() - 1);
     for (size_t e = 0; e < count; ++e) {
         int first, last;
         edgeBands(e, first, last);
-        for (int b = first; b <= last; ++b) bandEdges_[cursor[b]++] = static_cast<uint32_t>(e);
+        for (int b = first; b <= last; ++b) bands->edges[cursor[b]++] = static_cast<uint32_t>(e);
     }
+    bands_ = std::move(bands);
 }
 
 inline int Polygon::Crossing(size_t e, double pu, double pv) const {
@@ -132,12 +136,13 @@ bool Polygon::Intersect(const Ray& ray, double tMin, double tMax, PrimitiveHit& 
     // Winding number of the projected outline around (pu, pv); non-zero means inside. With
     // bands, only the edges of the point's band can cross (none outside the v range).
     int winding = 0;
-    if (bandCount_ == 0) {
+    if (!bands_) {
         for (size_t e = 0; e < vertexCount_; ++e) winding += Crossing(e, pu, pv);
     } else {
-        if (!(pv >= bandLo_ && pv < bandHi_)) return false;
-        const int b = Band(pv);
-        for (uint32_t k = bandStart_[b]; k < bandStart_[b + 1]; ++k) winding += Crossing(bandEdges_[k], pu, pv);
+        const Bands& bands = *bands_;
+        if (!(pv >= bands.lo && pv < bands.hi)) return false;
+        const int b = bands.Of(pv);
+        for (uint32_t k = bands.start[b]; k < bands.start[b + 1]; ++k) winding += Crossing(bands.edges[k], pu, pv);
     }
     if (winding == 0) return false;
     hit.t = t;

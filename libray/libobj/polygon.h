@@ -41,8 +41,8 @@ class Polygon final : public Primitive {
     // vertices (triangles and quadrilaterals: most polygons of large scenes) are kept in
     // the object, longer ones on the heap, so most polygons cost one allocation.
     static constexpr size_t kInlineVertices = 4;
-    int axisU_, axisV_;
-    size_t vertexCount_;
+    uint8_t axisU_, axisV_;
+    uint32_t vertexCount_;     // a polygon of 2^32 vertices would not fit in memory
     const double* projected_;  // inlineProjected_ or heapProjected_
     double inlineProjected_[2 * kInlineVertices];
     std::unique_ptr<double[]> heapProjected_;
@@ -51,18 +51,22 @@ class Polygon final : public Primitive {
     // Outlines of more than kBandedEdges edges (gear faces: 144) are cut into horizontal
     // bands of the projected v range, each listing the edges whose v range overlaps it, so
     // a point's winding number adds only the edges of its band. An edge can cross the
-    // line v = pv only if min(v0, v1) <= pv < max(v0, v1); Band() is non-decreasing in v,
-    // so such an edge is listed in Band(pv). The band lists are empty for small outlines.
+    // line v = pv only if min(v0, v1) <= pv < max(v0, v1); Of() is non-decreasing in v,
+    // so such an edge is listed in band Of(pv). Held apart (null for small outlines):
+    // most polygons of a large mesh are triangles, and their size is setup time.
     static constexpr size_t kBandedEdges = 12;
+    struct Bands {
+        double lo = 0, hi = 0, scale = 0;  // v range; bands per unit of v
+        int count = 0;
+        // Band b lists edges[k] for start[b] <= k < start[b + 1].
+        std::vector<uint32_t> start, edges;
+        int Of(double v) const;
+    };
     // Edge e runs from vertex e - 1 (cyclically) to vertex e; +1, -1 or 0 to the winding
     // number of the projected outline around (pu, pv).
     int Crossing(size_t e, double pu, double pv) const;
-    int Band(double v) const;
     void BuildBands();
-    double bandLo_ = 0, bandHi_ = 0, bandScale_ = 0;  // v range; bands per unit of v
-    int bandCount_ = 0;
-    // Band b lists bandEdges_[k] for bandStart_[b] <= k < bandStart_[b + 1].
-    std::vector<uint32_t> bandStart_, bandEdges_;
+    std::unique_ptr<const Bands> bands_;
 };
 
 }  // namespace rs

@@ -297,12 +297,12 @@ TEST(Parser, TextureTransformsMayBeAnimated) {
         "sphere 1 0 0 0 texture bump 1 scale 2 2 2 rotate 0 0 1 (linear(0, 0, 1, 90))\n"
         "texture wood translate 1 0 0\n");
     const Object& ball = *Top(s)[0];
-    ASSERT_EQ(ball.textures.size(), 2u);
-    EXPECT_TRUE(ball.textures[0]->transform.IsAnimated());
-    Vec3 p = ball.textures[0]->transform.At(1).ApplyPoint({1, 0, 0});
+    ASSERT_EQ(ball.Textures().size(), 2u);
+    EXPECT_TRUE(ball.Textures()[0]->transform.IsAnimated());
+    Vec3 p = ball.Textures()[0]->transform.At(1).ApplyPoint({1, 0, 0});
     EXPECT_NEAR(p.x, 0, 1e-12);
     EXPECT_NEAR(p.y, 2, 1e-12);
-    EXPECT_FALSE(ball.textures[1]->transform.IsAnimated());
+    EXPECT_FALSE(ball.Textures()[1]->transform.IsAnimated());
     EXPECT_FALSE(ball.parentFromObject.IsAnimated());
     EXPECT_NE(ParseError("sphere 1 0 0 0 texture bump (time)").find("Illegal expression use"),
               std::string::npos);
