@@ -1,6 +1,9 @@
 // rayshade: renders a Rayshade 4.0 scene file to PNG (or the original's mtv format).
 #include <sys/resource.h>
 #include <signal.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <unistd.h>
 
 #include <algorithm>
@@ -296,6 +299,20 @@ int Run(int argc, char** argv) {
 
 }  // namespace
 
+// The setup of a large scene allocates and frees buffers of megabytes in turn (the
+// hierarchy's and grid's build arrays, the children's boxes). glibc's defaults hand each
+// such buffer back to the kernel when it is freed (mmap above a threshold, trimming the
+// heap's top), so the next one is fresh memory whose every page faults on first touch: on
+// this kind of VM, about 3 µs a page. Keeping freed memory in the heap for reuse removes
+// 9,000 of tetra's 48,000 faults and 0.03 s of its 0.40 s setup; the peak grows by 1%.
+void KeepFreedMemoryForReuse() {
+#if defined(__GLIBC__)
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest; bigger blocks are still mapped
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+}
+
 int main(int argc, char** argv) {
+    KeepFreedMemoryForReuse();
     return rs::RunCommand("rayshade", gQuiet, [&] { return Run(argc, argv); });
 }

@@ -6,11 +6,16 @@
 namespace rs {
 
 void ChildHierarchy::Build(std::vector<const Object*> children) {
-    children_ = std::move(children);
     std::vector<Bounds3> boxes;
-    boxes.reserve(children_.size());
-    for (const Object* child : children_) boxes.push_back(child->BoundsInParent().Padded(kEpsilon));
-    hierarchy_.Build(boxes, BoundingVolumeHierarchy::Split::SurfaceArea);
+    boxes.reserve(children.size());
+    for (const Object* child : children) boxes.push_back(child->BoundsInParent().Padded(kEpsilon));
+    Build(std::move(children), boxes);
+}
+
+void ChildHierarchy::Build(std::vector<const Object*> children,
+                           const std::vector<Bounds3>& paddedBoxes) {
+    children_ = std::move(children);
+    hierarchy_.Build(paddedBoxes, BoundingVolumeHierarchy::Split::SurfaceArea);
 }
 
 bool ChildHierarchy::Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const {

@@ -17,6 +17,9 @@ class ChildHierarchy {
     // Builds over `children` (all bounded), from their BoundsInParent() padded by kEpsilon
     // (flat children, polygons and discs, keep boxes of non-zero thickness).
     void Build(std::vector<const Object*> children);
+    // The same, with those padded boxes already at hand (boxes[i] for children[i]; a grid
+    // has them for its voxels, and on a large scene they are megabytes to write again).
+    void Build(std::vector<const Object*> children, const std::vector<Bounds3>& paddedBoxes);
     // Whether nothing is built (a default-constructed or reset hierarchy).
     bool IsEmpty() const { return hierarchy_.IsEmpty(); }
     // The hierarchy's expected cost of one ray through the children's union box, in units

@@ -120,10 +120,10 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
                static_cast<unsigned long long>(Limits().gridEntries));
     }
     if (search_ != Search::Voxels) {
-        hierarchy_.Build(bounded_);
+        hierarchy_.Build(bounded_, childBoxes_);
         if (search_ == Search::Hierarchy ||
             !(ExpectedVoxelCost(entries) < hierarchy_.ExpectedCost())) {
-            childBoxes_.clear();
+            childBoxes_ = {};  // the voxel walk's; megabytes on a large scene
             return;
         }
         hierarchy_ = ChildHierarchy{};
