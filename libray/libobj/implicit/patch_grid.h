@@ -7,13 +7,16 @@
 // edge, so a point the walk places in a neighbouring cell by rounding is still covered).
 // The walk stops at the first cell entered beyond tMax, which the visits may lower (the
 // best hit so far): every point of an item's box before tMax lies in a cell entered before
-// tMax, so no item whose box meets (tMin, tMax) is left unvisited. An item listed in several cells the walk crosses is visited once as long as
-// it is among the last kRecentVisits items visited (a list on the walk's stack); beyond,
-// it is visited again, which costs time only. Build and walk are deterministic (no thread
+// tMax, so no item whose box meets (tMin, tMax) is left unvisited. An item listed in
+// several cells the walk crosses is visited once as long as the walk has met at most
+// kVisitedItems distinct items (a hash set on the walk's stack, kept at most half full
+// so a lookup probes a few slots); beyond, items it could not record are visited again,
+// which costs time only. Build and walk are deterministic (no thread
 // count or order enters) and the grid is immutable after construction.
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -30,7 +33,8 @@ class PatchGrid {
     // At most this many cells per item (objects spread thinly over a large box).
     static constexpr double kMaxCellsPerItem = 8;
     static constexpr double kBinMargin = 1e-6;
-    static constexpr int kRecentVisits = 32;
+    static constexpr int kVisitedSlots = 256;  // a power of two
+    static constexpr int kVisitedItems = kVisitedSlots / 2;
 
     // Bins items 0..boxes.size()−1 by their boxes (non-empty, finite; fewer than 2^31).
     explicit PatchGrid(const std::vector<Bounds3>& boxes);
@@ -87,18 +91,33 @@ bool PatchGrid::TraverseInEntryOrder(const Ray& ray, double tMin, double& tMax,
         next[a] = (plane - ray.origin[a]) * invDir[a];
         delta[a] = edge_[a] * std::abs(invDir[a]);
     }
-    std::uint32_t recent[kRecentVisits];
-    int recentCount = 0, recentNext = 0;
+    // Open addressing with linear probing; item ids are below 2^31, so kFree is none.
+    constexpr std::uint32_t kFree = 0xffffffffu;
+    std::uint32_t visited[kVisitedSlots];
+    std::fill(visited, visited + kVisitedSlots, kFree);
+    int visitedCount = 0;
+    const auto firstVisit = [&](std::uint32_t item) {
+        // Fibonacci hashing: the top bits of item·2^32/φ spread consecutive ids apart.
+        constexpr int kShift = 32 - std::countr_zero(static_cast<unsigned>(kVisitedSlots));
+        std::uint32_t slot = (item * 2654435769u) >> kShift;
+        while (true) {
+            if (visited[slot] == item) return false;
+            if (visited[slot] == kFree) {
+                if (visitedCount < kVisitedItems) {
+                    visited[slot] = item;
+                    ++visitedCount;
+                }
+                return true;
+            }
+            slot = (slot + 1) & (kVisitedSlots - 1);
+        }
+    };
     bool found = false;
     while (true) {
         const std::size_t c = Index(cell[0], cell[1], cell[2]);
         for (std::uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
             const std::uint32_t item = entries_[k];
-            if (std::find(recent, recent + recentCount, item) != recent + recentCount) continue;
-            recent[recentNext] = item;
-            recentNext = (recentNext + 1) % kRecentVisits;
-            recentCount = std::min(recentCount + 1, kRecentVisits);
-            found |= visit(static_cast<int>(item));
+            if (firstVisit(item)) found |= visit(static_cast<int>(item));
         }
         const int a = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
         entry = next[a];
