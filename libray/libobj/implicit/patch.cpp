@@ -53,23 +53,41 @@ bool Patch::MayHoldRoot(const Ray& ray, double tMin, double tMax) const {
     return MayMeetSupport(field_.TermAt(Own()), 0, ray, tMin, tMax);
 }
 
-bool Patch::MayMeetSupport(const FieldTerm& own, double moved, const Ray& ray, double tMin,
-                           double tMax) {
+bool Patch::SupportBall::MayMeet(const Ray& ray, double tMin, double tMax) const {
     const double a = LengthSquared(ray.dir);
     if (!(a > 0)) return true;
-    const double reach = own.kernel.Radius() * (1 + kSupportMargin) + moved;
     // NaNs (overflow) fail every comparison below: true.
+    const Vec3 oc = ray.origin - centre;
+    const double radius = reach + kOriginMargin * Length(oc);
+    // The closest approach to the centre, at parameter tc and squared distance d2; the
+    // enlarged ball spans tc ± half.
+    const double tc = -Dot(oc, ray.dir) / a;
+    const double d2 = LengthSquared(ray.At(tc) - centre);
+    if (d2 > radius * radius) return false;
+    const double half = std::sqrt((radius * radius - d2) / a);
+    return !(tc + half < tMin || tc - half > tMax);
+}
+
+std::optional<Patch::SupportBall> Patch::StaticSupportBall() const {
+    if (field_.TermReach(Own()) != 0) return std::nullopt;
+    const FieldTerm& own = field_.Terms()[Own()];
+    const auto* point = std::get_if<PointSkeleton>(&own.skeleton);
+    if (!point) return std::nullopt;
+    return SupportBall{point->center, SupportReach(own, 0)};
+}
+
+double Patch::SupportReach(const FieldTerm& own, double moved) {
+    return own.kernel.Radius() * (1 + kSupportMargin) + moved;
+}
+
+bool Patch::MayMeetSupport(const FieldTerm& own, double moved, const Ray& ray, double tMin,
+                           double tMax) {
+    const double reach = SupportReach(own, moved);
     if (const auto* point = std::get_if<PointSkeleton>(&own.skeleton)) {
-        const Vec3 oc = ray.origin - point->center;
-        const double radius = reach + kOriginMargin * Length(oc);
-        // The closest approach to the centre, at parameter tc and squared distance d2; the
-        // enlarged ball spans tc ± half.
-        const double tc = -Dot(oc, ray.dir) / a;
-        const double d2 = LengthSquared(ray.At(tc) - point->center);
-        if (d2 > radius * radius) return false;
-        const double half = std::sqrt((radius * radius - d2) / a);
-        return !(tc + half < tMin || tc - half > tMax);
+        return SupportBall{point->center, reach}.MayMeet(ray, tMin, tMax);
     }
+    const double a = LengthSquared(ray.dir);
+    if (!(a > 0)) return true;
     if (const auto* segment = std::get_if<SegmentSkeleton>(&own.skeleton)) {
         // The distance between the ray's line and the segment: projected along the ray
         // onto the plane normal to it (a linear map), the line becomes the origin and the

@@ -25,6 +25,7 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -79,6 +80,16 @@ class Patch {
     // rounding; other kinds are not tested (true: their support box, Box(), is the test
     // the caller makes).
     bool MayHoldRoot(const Ray& ray, double tMin, double tMax) const;
+    // MayHoldRoot's test as a ball alone, for callers that keep the balls of many patches
+    // together (a million patches' own terms are a cache miss each): a static point
+    // skeleton's own ball, for which MayHoldRoot(ray, tMin, tMax) equals
+    // ball.MayMeet(ray, tMin, tMax) for every ray; nothing for other kinds and moving fields.
+    struct SupportBall {
+        Vec3 centre;
+        double reach;  // the kernel radius enlarged by kSupportMargin
+        bool MayMeet(const Ray& ray, double tMin, double tMax) const;
+    };
+    std::optional<SupportBall> StaticSupportBall() const;
     // The enlargement: relative 1e-6 of R plus 1e-9 of the distances from the ray origin
     // to the skeleton's points (centre, or both ends). The closest approaches and the
     // accepted points o + t·d are computed with errors of a few ulps of those lengths
@@ -120,6 +131,8 @@ class Patch {
     // MayHoldRoot's test for the skeleton of `own` with its support radius grown by `moved`.
     static bool MayMeetSupport(const FieldTerm& own, double moved, const Ray& ray, double tMin,
                                double tMax);
+    // The support radius those tests use: R enlarged by kSupportMargin, plus `moved`.
+    static double SupportReach(const FieldTerm& own, double moved);
 
     Field field_;
     Bounds3 box_;

@@ -111,6 +111,11 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
     for (const Patch& patch : patches_) patchBoxes.push_back(patch.Box());
     if (patches_.size() > gridMinPatches) {
         grid_ = std::make_unique<const PatchGrid>(patchBoxes);
+        supportBalls_.reserve(patches_.size());
+        for (const Patch& patch : patches_) {
+            supportBalls_.push_back(
+                patch.StaticSupportBall().value_or(Patch::SupportBall{Vec3{}, kNoBall}));
+        }
     } else {
         bvh_.Build(patchBoxes);
     }
@@ -178,7 +183,7 @@ std::optional<MethodHit> PatchesMethod::Intersect(const Ray& ray, double tMin,
     WalkPatches(ray, tMin, best, [&](int patch) {
         // A ray missing the own term's support meets no acceptable root: skip the patch
         // before its tree is built (the result is the same).
-        if (!patches_[patch].MayHoldRoot(ray, tMin, best)) return false;
+        if (!MayHoldRoot(patch, ray, tMin, best)) return false;
         // Objects of per-cell trees search only the piece where the own term may
         // predominate (Patch::ClipToOwnRegion): at the fluids' density a ray crosses a
         // few patches' balls for each patch it may hit in.

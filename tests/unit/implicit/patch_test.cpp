@@ -171,6 +171,41 @@ TEST(Patch, MayHoldRootFalseOnlyWhereTheOwnTermVanishes) {
     }
 }
 
+// A static point patch's support ball answers exactly as MayHoldRoot, on random rays and
+// on rays grazing the ball's enlarged radius; other skeletons have no ball.
+TEST(Patch, StaticSupportBallAnswersAsMayHoldRoot) {
+    const Vec3 c{0.2, -0.1, 0.3};
+    std::vector<Patch> patches =
+        BuildPatches(Field({Point("a", c), Point("b", {1, 0, 0})}), BlendMode::Automatic);
+    const std::optional<Patch::SupportBall> ball = patches[0].StaticSupportBall();
+    ASSERT_TRUE(ball.has_value());
+    const double radius = Point("a", c).kernel.Radius();
+    Rng rng(11);
+    int passed = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Ray ray{testing::RandomPoint(rng, -4, 4),
+                testing::RandomUnit(rng) * testing::Uniform(rng, 0.1, 3)};
+        if (i % 4 == 0) {
+            // Aimed at the ball's rim: closest approach within 1e-5 of R(1 + margin).
+            const Vec3 d = testing::RandomUnit(rng);
+            Vec3 side = Normalize(Cross(d, testing::RandomUnit(rng)));
+            const double miss = radius * (1 + Patch::kSupportMargin) * (1 + testing::Uniform(rng, -1e-5, 1e-5));
+            ray = Ray{c + side * miss - d * 5, d};
+        }
+        const double tMin = testing::Uniform(rng, -2, 2);
+        const double tMax = tMin + testing::Uniform(rng, 0, 8);
+        const bool expected = patches[0].MayHoldRoot(ray, tMin, tMax);
+        ASSERT_EQ(ball->MayMeet(ray, tMin, tMax), expected) << "ray " << i;
+        passed += expected;
+    }
+    EXPECT_GT(passed, 1000);  // both answers occur
+    EXPECT_LT(passed, 19000);
+    std::vector<Patch> capsule = BuildPatches(
+        Field({{"s", SegmentSkeleton{{0, 0, 0}, {2, 0, 0}}, Point("x", c).kernel, 1}}),
+        BlendMode::Automatic);
+    EXPECT_FALSE(capsule[0].StaticSupportBall().has_value());
+}
+
 // ClipToOwnRegion keeps every sampled point of the ray's piece where the own term is
 // positive and may predominate (the seam rule at a tolerance-sized uncertainty), the
 // points where a root may be accepted, and cuts most of the rest;
