@@ -106,16 +106,16 @@ PatchesMethod::PatchesMethod(const Field& whole, const ImplicitOptions& options,
             for (Patch& patch : patches_) patch.LimitToSurface(threshold_);
         }
     }
+    supportBalls_.reserve(patches_.size());
+    for (const Patch& patch : patches_) {
+        supportBalls_.push_back(
+            patch.StaticSupportBall().value_or(Patch::SupportBall{Vec3{}, kNoBall}));
+    }
     std::vector<Bounds3> patchBoxes;
     patchBoxes.reserve(patches_.size());
     for (const Patch& patch : patches_) patchBoxes.push_back(patch.Box());
     if (patches_.size() > gridMinPatches) {
         grid_ = std::make_unique<const PatchGrid>(patchBoxes);
-        supportBalls_.reserve(patches_.size());
-        for (const Patch& patch : patches_) {
-            supportBalls_.push_back(
-                patch.StaticSupportBall().value_or(Patch::SupportBall{Vec3{}, kNoBall}));
-        }
     } else {
         bvh_.Build(patchBoxes);
     }

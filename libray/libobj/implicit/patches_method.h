@@ -116,14 +116,13 @@ class PatchesMethod final : public IntersectionMethod {
     Bounds3 bounds_;
     BoundingVolumeHierarchy bvh_;  // over the patch boxes, one item per patch (no grid_)
     std::unique_ptr<const PatchGrid> grid_;  // of the patch boxes (null: bvh_)
-    // With grid_, patch i's Patch::StaticSupportBall(), or reach kNoBall where it has none
-    // (MayHoldRoot is asked then): the walk's first test reads 32 bytes per patch.
+    // Patch i's Patch::StaticSupportBall(), or reach kNoBall where it has none (MayHoldRoot
+    // is asked then): the walk's first test reads 32 bytes per patch.
     static constexpr double kNoBall = -1;
     std::vector<Patch::SupportBall> supportBalls_;
     // Patch i's MayHoldRoot, from supportBalls_ where it can.
     bool MayHoldRoot(int i, const Ray& ray, double tMin, double tMax) const {
-        if (!supportBalls_.empty() && supportBalls_[i].reach != kNoBall)
-            return supportBalls_[i].MayMeet(ray, tMin, tMax);
+        if (supportBalls_[i].reach != kNoBall) return supportBalls_[i].MayMeet(ray, tMin, tMax);
         return patches_[i].MayHoldRoot(ray, tMin, tMax);
     }
 };
