@@ -66,6 +66,7 @@ struct RenderOptions {
     Color background;
     bool shadowTransparency = true;  // toggled by `shadowtransp` and -o
     bool noShadows = false;          // -n
+    bool shadowCache = true;         // toggled by -s (changes only statistics and time)
     bool flipNormals = false;        // -f, read by triangles/polygons at creation
     double gamma = 1;                // -G
 

@@ -103,7 +103,7 @@ const std::vector<OptionGroup>& OptionGroups() {
           {"-C r g b", "ray-tree cutoff per channel (default 0.002)"},
           {"-n", "toggle no shadows"},
           {"-o", "toggle transparent shadows"},
-          {"-s", "accepted (shadow caching; nothing is cached)"},
+          {"-s", "toggle shadow caching (on by default; changes only statistics)"},
           {"-f", "toggle flipping of triangle and polygon normals"}}},
         {"Animation and stereo",
          {{"-A f", "first frame to render (default 0)"},
@@ -261,7 +261,7 @@ bool ParseCommandLine(const std::vector<std::string>& args, CommandLine& cl, std
                 if (o.samples < 1) o.samples = 1;
                 o.samplesSet = true;
                 break;
-            case 's': break;  // shadow caching changes only statistics; we do not cache
+            case 's': o.shadowCache = !o.shadowCache; break;
             case 'T':
                 if (!in.Real(flag, o.contrast.r) || !in.Real(flag, o.contrast.g) ||
                     !in.Real(flag, o.contrast.b))

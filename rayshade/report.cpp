@@ -46,6 +46,7 @@ void WriteOptionsSummary(std::FILE* out, const Scene& scene, int threads) {
     std::fprintf(out, "%s\n", o.noShadows ? "No shadows"
                                           : (o.shadowTransparency ? "Shadows through transparent objects"
                                                                   : "Opaque shadows"));
+    if (!o.shadowCache) std::fprintf(out, "Shadow cache disabled\n");
     std::fprintf(out, "Threads: %d\n", threads);
 }
 
@@ -67,6 +68,10 @@ void WriteStatistics(std::FILE* out, const RunTimes& times) {
                  static_cast<unsigned long long>(hitting), Percent(hitting, total));
     std::fprintf(out, "Shadow hits:\t\t\t%llu (%3.3f%%)\n",
                  static_cast<unsigned long long>(c["shadow hits"]), Percent(c["shadow hits"], shadow));
+    if (c["shadow cache hits"] + c["shadow cache misses"] > 0)
+        std::fprintf(out, "Shadow cache hits:\t\t%llu (%llu misses)\n",
+                     static_cast<unsigned long long>(c["shadow cache hits"]),
+                     static_cast<unsigned long long>(c["shadow cache misses"]));
     std::fprintf(out, "Supersampled pixels:\t\t%llu\n",
                  static_cast<unsigned long long>(c["supersampled pixels"]));
     std::fprintf(out, "B.V. intersection tests:\t%llu\n",
@@ -94,7 +99,8 @@ void WriteStatistics(std::FILE* out, const RunTimes& times) {
 
     // Other counters (implicit surfaces, ...) registered by modules, when non-zero.
     static const char* kShown[] = {"eye rays", "shadow rays", "reflected rays", "refracted rays",
-                                   "hit rays", "shadow hits", "supersampled pixels",
+                                   "hit rays", "shadow hits", "shadow cache hits",
+                                   "shadow cache misses", "supersampled pixels",
                                    "bounding box tests"};
     for (const CounterValue& v : all) {
         bool shown = false;

@@ -1,6 +1,7 @@
 #include "rayshade/tracer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 #include <unordered_set>
@@ -22,6 +23,26 @@ const CounterId kReflectedRays = RegisterCounter("reflected rays");
 const CounterId kRefractedRays = RegisterCounter("refracted rays");
 const CounterId kHitRays = RegisterCounter("hit rays");
 const CounterId kShadowHits = RegisterCounter("shadow hits");
+// Opaque shadow rays the cached blocker answered, and blocked ones it did not.
+const CounterId kShadowCacheHits = RegisterCounter("shadow cache hits");
+const CounterId kShadowCacheMisses = RegisterCounter("shadow cache misses");
+
+// One thread's shadow cache entries: blockers[lightIndex * depths + depth] is the node that
+// blocked that light's last opaque shadow ray from a hit at that depth, or null. The
+// entries are hints: a cached node is tested with the same query as the world and only a
+// blocking answer is taken from it, so images do not depend on which thread rendered what
+// or in which order; only the counters and the time do.
+struct ShadowCacheEntries {
+    uint64_t owner = 0;  // the serial of the Tracer the entries belong to; 0: none
+    std::vector<const Object*> blockers;
+};
+thread_local ShadowCacheEntries tShadowCache;
+
+std::atomic<uint64_t> gNextTracerSerial{1};
+
+// Above this many entries (lights times depths) a scene gets no shadow cache: one entry
+// per light and depth is kept per thread, and such a scene's lights are not worth caching.
+constexpr size_t kMaxShadowCacheEntries = size_t{1} << 20;
 // Normals that arrived non-finite or zero and were replaced (see Tracer::Evaluate); printed
 // by -v when non-zero. The numerics tests require it to stay zero.
 const CounterId kBadNormals = RegisterCounter("Non-finite or zero normals replaced");
@@ -129,7 +150,12 @@ Tracer::Tracer(const Scene& scene)
     : scene_(scene),
       options_(scene.options),
       opaqueShadows_(!options_.shadowTransparency ||
-                     (defaultSurface_.transp < kEpsilon && !HasTransparentSurface(*scene.world))) {}
+                     (defaultSurface_.transp < kEpsilon && !HasTransparentSurface(*scene.world))),
+      shadowCache_(options_.shadowCache && !scene.lights.empty() &&
+                   scene.lights.size() * (static_cast<size_t>(std::max(0, options_.maxDepth)) + 1) <=
+                       kMaxShadowCacheEntries),
+      cacheDepths_(std::max(0, options_.maxDepth) + 1),
+      serial_(gNextTracerSerial.fetch_add(1)) {}
 
 Color Tracer::TraceEye(const Ray& ray, SampleState& sample, bool& hit) const {
     Count(kEyeRays);
@@ -262,6 +288,7 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
     // Lights are evaluated in reverse order of definition, as the original stores them.
     for (auto it = scene_.lights.rbegin(); it != scene_.lights.rend(); ++it) {
         const Light& light = **it;
+        const int lightIndex = static_cast<int>(it - scene_.lights.rbegin());
         LightSample ls;
         if (!light.Sample(sp.point, sample.sampleNumber, sample.samplesPerSide, *sample.rng, ls))
             continue;
@@ -272,7 +299,8 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
         if (cosTheta > 0) {
             Color li = noShadow ? ls.color
                                 : LightThroughShadows(sp.point, ray.time, ls.color, ls.shadowDir,
-                                                      ls.shadowDist, width, sample);
+                                                      ls.shadowDist, width, lightIndex, depth,
+                                                      sample);
             if (li == Color{}) continue;
             c += s.diffuse * li * cosTheta;
             double cosAlpha = Dot(mirror, ls.shadeDir);
@@ -284,7 +312,8 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
             // intended behaviour (no shipped scene uses translucency).
             Color li = noShadow ? ls.color
                                 : LightThroughShadows(sp.point, ray.time, ls.color, ls.shadowDir,
-                                                      ls.shadowDist, width, sample);
+                                                      ls.shadowDist, width, lightIndex, depth,
+                                                      sample);
             if (li == Color{}) continue;
             Color share = s.translucentColor * li * (-cosTheta);
             double cosAlpha = -Dot(mirror, ls.shadeDir);
@@ -340,9 +369,33 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
     return c;
 }
 
+bool Tracer::OpaqueOccluded(const Ray& ray, double tMin, double dist, int lightIndex,
+                            int depth) const {
+    if (!shadowCache_ || depth < 0 || depth >= cacheDepths_)
+        return scene_.world->Occluded(ray, tMin, dist);
+    ShadowCacheEntries& cache = tShadowCache;
+    if (cache.owner != serial_) {
+        cache.owner = serial_;
+        cache.blockers.assign(scene_.lights.size() * static_cast<size_t>(cacheDepths_), nullptr);
+    }
+    const Object*& cached = cache.blockers[static_cast<size_t>(lightIndex) * cacheDepths_ + depth];
+    // The cached node's parent space is the world's (Object::Occluded's contract).
+    if (cached != nullptr && cached->Occluded(ray, tMin, dist)) {
+        Count(kShadowCacheHits);
+        return true;
+    }
+    const Object* blocker = nullptr;
+    const bool blocked = scene_.world->Occluded(ray, tMin, dist, &blocker);
+    // A ray that found nothing forgets the entry: the next blocked ray is likely in another
+    // shadow, cast by another object.
+    cached = blocked ? blocker : nullptr;
+    if (blocked) Count(kShadowCacheMisses);
+    return blocked;
+}
+
 Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light,
                                   const Vec3& dir, double dist, double footprint,
-                                  SampleState& sample) const {
+                                  int lightIndex, int depth, SampleState& sample) const {
     Count(kShadowRays);
     Ray ray{p, dir, time};
     ray.footprintWidth = footprint;
@@ -352,7 +405,7 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
     if (opaqueShadows_) {
         // Every occluder is opaque, so the light is blocked exactly when anything lies on
         // the segment: the search may stop at the first hit it finds.
-        if (!scene_.world->Occluded(ray, tMin, dist)) return c;
+        if (!OpaqueOccluded(ray, tMin, dist, lightIndex, depth)) return c;
         Count(kShadowHits);
         return {};
     }

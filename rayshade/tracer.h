@@ -54,9 +54,14 @@ class Tracer {
                 MediumStack& media, SampleState& sample) const;
     // Light arriving at `p` from a light sample after occluders (black when blocked).
     // `footprint`: the beam's width at p (ray.h); the shadow ray's narrows to 0 at the light.
+    // `lightIndex` and `depth` (the shaded ray's) pick the shadow cache's entry.
     Color LightThroughShadows(const Vec3& p, double time, const Color& light,
-                              const Vec3& dir, double dist, double footprint,
-                              SampleState& sample) const;
+                              const Vec3& dir, double dist, double footprint, int lightIndex,
+                              int depth, SampleState& sample) const;
+    // Whether anything opaque lies on the shadow ray's segment (tMin, dist), asking the
+    // shadow cache's entry for (lightIndex, depth) first.
+    bool OpaqueOccluded(const Ray& ray, double tMin, double dist, int lightIndex,
+                        int depth) const;
     Color Atmosphere(const Ray& ray, double dist, const Color& c) const;
     const Surface& UntexturedSurface(const HitRecord& hit) const;
 
@@ -66,6 +71,12 @@ class Tracer {
     // No occluder can let light through (no transparent surface in the scene, or shadows
     // through transparent objects are off): shadow rays ask only whether anything is hit.
     bool opaqueShadows_;
+    // The shadow cache (spec §3.7; off with -s): what blocked the last opaque shadow ray
+    // of each light at each ray depth, kept per thread (see OpaqueOccluded) under this
+    // tracer's serial, so entries never outlive the scene they name.
+    bool shadowCache_;
+    int cacheDepths_;      // ray depths 0..maxDepth
+    uint64_t serial_;      // unique among the tracers of this process
 };
 
 }  // namespace rs

@@ -23,8 +23,11 @@ class Aggregate {
 
     // Whether any child has a hit with tMin < t < tMax (the shadow-ray question); the same
     // answer as Intersect's return value. Aggregates that can stop at the first hit found
-    // override it; the default runs the nearest-hit search.
-    virtual bool Occluded(const Ray& ray, double tMin, double tMax) const {
+    // override it and pass `blocker` to the children's Object::Occluded, which then name
+    // the blocking primitive below; the default runs the nearest-hit search and names none
+    // (a CSG hit is not any one child's), leaving *blocker as the caller set it (null).
+    virtual bool Occluded(const Ray& ray, double tMin, double tMax,
+                          const Object** /*blocker*/) const {
         HitRecord hit;
         return Intersect(ray, tMin, tMax, hit);
     }

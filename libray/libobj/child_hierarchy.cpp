@@ -24,9 +24,10 @@ bool ChildHierarchy::Intersect(const Ray& ray, double tMin, double& tMax, HitRec
     });
 }
 
-bool ChildHierarchy::Occluded(const Ray& ray, double tMin, double tMax) const {
+bool ChildHierarchy::Occluded(const Ray& ray, double tMin, double tMax,
+                              const Object** blocker) const {
     return hierarchy_.Traverse<true>(ray, tMin, tMax, [&](int i) {
-        return children_[i]->Occluded(ray, tMin, tMax);
+        return children_[i]->Occluded(ray, tMin, tMax, blocker);
     });
 }
 

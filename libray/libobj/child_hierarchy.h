@@ -28,8 +28,9 @@ class ChildHierarchy {
 
     // Nearest hit among the children with tMin < t < tMax (shrinks tMax, fills hit).
     bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const;
-    // Whether any child has a hit with tMin < t < tMax; returns at the first found.
-    bool Occluded(const Ray& ray, double tMin, double tMax) const;
+    // Whether any child has a hit with tMin < t < tMax; returns at the first found, naming
+    // the blocker through the child's Object::Occluded when `blocker` is not null.
+    bool Occluded(const Ray& ray, double tMin, double tMax, const Object** blocker) const;
 
   private:
     std::vector<const Object*> children_;

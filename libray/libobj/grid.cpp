@@ -225,14 +225,15 @@ bool GridAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
            found;
 }
 
-bool GridAggregate::Occluded(const Ray& ray, double tMin, double tMax) const {
+bool GridAggregate::Occluded(const Ray& ray, double tMin, double tMax,
+                             const Object** blocker) const {
     for (const Object* child : unbounded_) {
-        if (child->Occluded(ray, tMin, tMax)) return true;
+        if (child->Occluded(ray, tMin, tMax, blocker)) return true;
     }
     if (bounded_.empty()) return false;
-    if (!hierarchy_.IsEmpty()) return hierarchy_.Occluded(ray, tMin, tMax);
+    if (!hierarchy_.IsEmpty()) return hierarchy_.Occluded(ray, tMin, tMax, blocker);
     return Walk<true>(ray, tMin, tMax,
-                      [&](const Object* child) { return child->Occluded(ray, tMin, tMax); });
+                      [&](const Object* child) { return child->Occluded(ray, tMin, tMax, blocker); });
 }
 
 template <bool kStopAtFirstHit, class Test>

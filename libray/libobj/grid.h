@@ -36,7 +36,8 @@ class GridAggregate final : public Aggregate {
     // Requires PrepareFrame to have run.
     bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const override;
     // The same walk, returning at the first hit.
-    bool Occluded(const Ray& ray, double tMin, double tMax) const override;
+    bool Occluded(const Ray& ray, double tMin, double tMax,
+                  const Object** blocker) const override;
 
     // The box of the bounded children (object space) and whether there are any.
     Bounds3 Bounds() const override { return bounds_; }

@@ -20,18 +20,19 @@ bool ListAggregate::Intersect(const Ray& ray, double tMin, double& tMax, HitReco
     return found;
 }
 
-bool ListAggregate::Occluded(const Ray& ray, double tMin, double tMax) const {
+bool ListAggregate::Occluded(const Ray& ray, double tMin, double tMax,
+                             const Object** blocker) const {
     for (const Object* child : unbounded_)
-        if (child->Occluded(ray, tMin, tMax)) return true;
+        if (child->Occluded(ray, tMin, tMax, blocker)) return true;
     if (!hasBounded_) return false;
-    if (!hierarchy_.IsEmpty()) return hierarchy_.Occluded(ray, tMin, tMax);
+    if (!hierarchy_.IsEmpty()) return hierarchy_.Occluded(ray, tMin, tMax, blocker);
     // The same box test as Intersect's: a ray missing every bounded child's box skips them
     // all, before any child maps the ray into its space (an animated transform evaluated
     // per shadow ray, in coin.ray).
     double t0 = tMin, t1 = tMax;
     if (!unbounded_.empty() && !bounds_.ClipRay(ray, t0, t1)) return false;
     for (const Object* child : bounded_)
-        if (child->Occluded(ray, tMin, tMax)) return true;
+        if (child->Occluded(ray, tMin, tMax, blocker)) return true;
     return false;
 }
 

@@ -19,7 +19,8 @@ class ListAggregate final : public Aggregate {
     // children that box is the owning node's, which Object::Intersect has already tested.
     bool Intersect(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const override;
     // The same children in the same order, returning at the first hit.
-    bool Occluded(const Ray& ray, double tMin, double tMax) const override;
+    bool Occluded(const Ray& ray, double tMin, double tMax,
+                  const Object** blocker) const override;
 
     // The box of the bounded children (object space) and whether there are any; unbounded
     // children are not described here (Object treats an aggregate holding some as unbounded).

@@ -60,17 +60,21 @@ bool Object::IntersectGeneral(const Ray& rayParent, double tMin, double& tMax,
     return inObjectSpace(ObjectRay(rayParent, storage));
 }
 
-bool Object::OccludedGeneral(const Ray& rayParent, double tMin, double tMax) const {
+bool Object::OccludedGeneral(const Ray& rayParent, double tMin, double tMax,
+                             const Object** blocker) const {
     Ray storage;
     const Ray& ray = ObjectRay(rayParent, storage);
-    switch (kind_) {
-        case Kind::Primitive: return OccludedPrimitive(ray, tMin, tMax);
-        case Kind::Aggregate:
-            return BoxAdmits(ray, tMin, tMax) && AggregateNode()->Occluded(ray, tMin, tMax);
-        case Kind::Instance:
-            return BoxAdmits(ray, tMin, tMax) && InstanceNode()->Occluded(ray, tMin, tMax);
-    }
-    return false;
+    if (kind_ == Kind::Primitive) return OccludedPrimitive(ray, tMin, tMax, blocker);
+    // Nothing is named unless a primitive below, seeing the same ray, names itself: the
+    // nodes below a transform see another ray, and CSG (Aggregate::Occluded's default)
+    // names none of its children. The search stops at the first child that blocks, and
+    // that child's call is the last to write *blocker (a child that did not block wrote
+    // before it), so the name left is the blocking chain's.
+    if (blocker) *blocker = nullptr;
+    const Object** below = parentFromObject.IsIdentity() ? blocker : nullptr;
+    if (!BoxAdmits(ray, tMin, tMax)) return false;
+    return kind_ == Kind::Aggregate ? AggregateNode()->Occluded(ray, tMin, tMax, below)
+                                    : InstanceNode()->Occluded(ray, tMin, tMax, below);
 }
 
 bool Object::IsClosed() const {

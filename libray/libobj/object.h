@@ -62,9 +62,19 @@ class Object {
     // PARENT's space: the same answer as Intersect's return value, but a search may stop at
     // the first hit it finds (shadow rays through opaque scenes).
     bool Occluded(const Ray& rayParent, double tMin, double tMax) const {
+        return Occluded(rayParent, tMin, tMax, nullptr);
+    }
+    // The same question, also naming what blocks: when the answer is true and `blocker` is
+    // not null, *blocker is either a primitive node P, this one or one below it, with
+    // P.Occluded(rayParent, tMin, tMax) true for this same ray (every node from this one
+    // down to P, P excluded, is a list, grid or instance without a transform, so P's parent
+    // space is this node's), or null: the hit is a CSG one or lies below a transformed
+    // aggregate or instance, whose test would cost about as much as the whole search. A
+    // shadow cache tests P first on the next shadow ray. On false, *blocker is unspecified.
+    bool Occluded(const Ray& rayParent, double tMin, double tMax, const Object** blocker) const {
         if (kind_ == Kind::Primitive && parentFromObject.IsIdentity())
-            return OccludedPrimitive(rayParent, tMin, tMax);
-        return OccludedGeneral(rayParent, tMin, tMax);
+            return OccludedPrimitive(rayParent, tMin, tMax, blocker);
+        return OccludedGeneral(rayParent, tMin, tMax, blocker);
     }
 
     // Bounds in the parent's space for the current frame (union over the shutter interval
@@ -118,14 +128,16 @@ class Object {
         return true;
     }
     bool IntersectGeneral(const Ray& rayParent, double tMin, double& tMax, HitRecord& hit) const;
-    bool OccludedPrimitive(const Ray& ray, double tMin, double tMax) const {
+    bool OccludedPrimitive(const Ray& ray, double tMin, double tMax, const Object** blocker) const {
         Count(counters_->tests);
         PrimitiveHit ph;
         if (!PrimitiveNode()->Intersect(ray, tMin, tMax, ph)) return false;
         Count(counters_->hits);
+        if (blocker) *blocker = this;
         return true;
     }
-    bool OccludedGeneral(const Ray& rayParent, double tMin, double tMax) const;
+    bool OccludedGeneral(const Ray& rayParent, double tMin, double tMax,
+                         const Object** blocker) const;
     // The ray in this node's object space: rayParent itself without a transform, else
     // mapped into `storage`.
     const Ray& ObjectRay(const Ray& rayParent, Ray& storage) const {

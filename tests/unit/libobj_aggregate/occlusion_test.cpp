@@ -1,5 +1,6 @@
 // Occlusion queries (Object::Occluded, the shadow rays' question) must give the same answer
 // as the nearest-hit search for every primitive and aggregate: they only may stop earlier.
+// The blocker they name must block the same ray.
 #include <gtest/gtest.h>
 
 #include "libcommon/constants.h"
@@ -109,12 +110,25 @@ std::vector<std::shared_ptr<Object>> Nodes(Rng& rng) {
     return nodes;
 }
 
+// Whether `target` is `node` or lies below it through nodes without transforms that are
+// lists, grids or instances: where Object::Occluded may find the blocker it names.
+bool ReachableThroughPlainNodes(const Object& node, const Object* target) {
+    if (&node == target) return true;
+    if (!node.parentFromObject.IsIdentity()) return false;
+    if (const Object* of = node.instanceOf()) return ReachableThroughPlainNodes(*of, target);
+    const Aggregate* aggregate = node.aggregate();
+    if (aggregate == nullptr || dynamic_cast<const CsgAggregate*>(aggregate) != nullptr) return false;
+    for (const auto& child : aggregate->Children())
+        if (ReachableThroughPlainNodes(*child, target)) return true;
+    return false;
+}
+
 TEST(Occlusion, AgreesWithTheNearestHitSearchOnRandomRays) {
     for (uint64_t seed = 1; seed <= 4; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
         Rng rng(seed);
         const auto nodes = Nodes(rng);
-        int occluded = 0, clear = 0;
+        int occluded = 0, clear = 0, namedBelow = 0, unnamed = 0;
         for (size_t n = 0; n < nodes.size(); ++n) {
             const Object& node = *nodes[n];
             for (int i = 0; i < 400; ++i) {
@@ -131,10 +145,29 @@ TEST(Occlusion, AgreesWithTheNearestHitSearchOnRandomRays) {
                 ASSERT_EQ(node.Occluded(ray, tMin, tMax), nearest)
                     << "node " << n << " (" << node.TypeName() << "), ray " << i;
                 ++(nearest ? occluded : clear);
+                // The blocker named is one the same ray is blocked by, in the node's parent
+                // space (the shadow cache tests it on the world's ray).
+                const Object* blocker = nullptr;
+                ASSERT_EQ(node.Occluded(ray, tMin, tMax, &blocker), nearest);
+                if (!nearest) continue;
+                if (blocker == nullptr) {
+                    ++unnamed;
+                    continue;
+                }
+                ASSERT_NE(blocker->primitive(), nullptr);
+                ASSERT_TRUE(ReachableThroughPlainNodes(node, blocker))
+                    << "node " << n << " (" << node.TypeName() << "), ray " << i;
+                ASSERT_TRUE(blocker->Occluded(ray, tMin, tMax))
+                    << "node " << n << " (" << node.TypeName() << "), ray " << i << ", blocker "
+                    << blocker->TypeName();
+                if (blocker != &node) ++namedBelow;
             }
         }
         EXPECT_GT(occluded, 2000);
         EXPECT_GT(clear, 2000);
+        // Aggregates name primitives below them; CSG and transformed aggregates name none.
+        EXPECT_GT(namedBelow, 300);
+        EXPECT_GT(unnamed, 100);
     }
 }
 
