@@ -369,26 +369,34 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
     return c;
 }
 
-bool Tracer::OpaqueOccluded(const Ray& ray, double tMin, double dist, int lightIndex,
-                            int depth) const {
-    if (!shadowCache_ || depth < 0 || depth >= cacheDepths_)
-        return scene_.world->Occluded(ray, tMin, dist);
+const Object** Tracer::ShadowCacheEntry(int lightIndex, int depth) const {
+    if (!shadowCache_ || depth < 0 || depth >= cacheDepths_) return nullptr;
     ShadowCacheEntries& cache = tShadowCache;
     if (cache.owner != serial_) {
         cache.owner = serial_;
         cache.blockers.assign(scene_.lights.size() * static_cast<size_t>(cacheDepths_), nullptr);
     }
-    const Object*& cached = cache.blockers[static_cast<size_t>(lightIndex) * cacheDepths_ + depth];
-    // The cached node's parent space is the world's (Object::Occluded's contract).
-    if (cached != nullptr && cached->Occluded(ray, tMin, dist)) {
-        Count(kShadowCacheHits);
-        return true;
-    }
+    return &cache.blockers[static_cast<size_t>(lightIndex) * cacheDepths_ + depth];
+}
+
+bool Tracer::CachedBlockerAnswers(const Object** entry, const Ray& ray, double tMin,
+                                  double dist) const {
+    // The cached primitive's parent space is the world's (Object::Occluded's contract).
+    if (entry == nullptr || *entry == nullptr || !(*entry)->Occluded(ray, tMin, dist)) return false;
+    Count(kShadowCacheHits);
+    return true;
+}
+
+bool Tracer::OpaqueOccluded(const Ray& ray, double tMin, double dist, int lightIndex,
+                            int depth) const {
+    const Object** entry = ShadowCacheEntry(lightIndex, depth);
+    if (entry == nullptr) return scene_.world->Occluded(ray, tMin, dist);
+    if (CachedBlockerAnswers(entry, ray, tMin, dist)) return true;
     const Object* blocker = nullptr;
     const bool blocked = scene_.world->Occluded(ray, tMin, dist, &blocker);
     // A ray that found nothing forgets the entry: the next blocked ray is likely in another
     // shadow, cast by another object.
-    cached = blocked ? blocker : nullptr;
+    *entry = blocked ? blocker : nullptr;
     if (blocked) Count(kShadowCacheMisses);
     return blocked;
 }
@@ -409,6 +417,16 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
         Count(kShadowHits);
         return {};
     }
+    // A cached primitive was found opaque through its path, so if it lies on the segment
+    // the loop below ends black too, at it or at a transparent occluder before it that
+    // absorbs everything. (The loop alone would miss it only behind a transparent surface
+    // closer than kShadowEpsilon, which it steps over.)
+    const Object** entry = ShadowCacheEntry(lightIndex, depth);
+    if (CachedBlockerAnswers(entry, ray, tMin, dist)) {
+        Count(kShadowHits);
+        return {};
+    }
+    if (entry != nullptr) *entry = nullptr;  // set again below if an opaque occluder blocks
     bool previousEntering = false;
     double previousT = 0, previousExtinct = 1;
     // Each pass moves past one transparent occluder; a bound keeps pathological stacks of
@@ -419,6 +437,10 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
         double tMax = dist;
         if (!scene_.world->Intersect(ray, tMin, tMax, hit)) return c;
         if (!options_.shadowTransparency || UntexturedSurface(hit).transp < kEpsilon) {
+            if (entry != nullptr) {
+                *entry = Object::PlainPathPrimitive(hit);
+                Count(kShadowCacheMisses);
+            }
             Count(kShadowHits);
             return {};
         }

@@ -58,10 +58,15 @@ class Tracer {
     Color LightThroughShadows(const Vec3& p, double time, const Color& light,
                               const Vec3& dir, double dist, double footprint, int lightIndex,
                               int depth, SampleState& sample) const;
-    // Whether anything opaque lies on the shadow ray's segment (tMin, dist), asking the
-    // shadow cache's entry for (lightIndex, depth) first.
+    // Whether anything lies on the shadow ray's segment (tMin, dist) when every occluder is
+    // opaque, asking the shadow cache's entry for (lightIndex, depth) first.
     bool OpaqueOccluded(const Ray& ray, double tMin, double dist, int lightIndex,
                         int depth) const;
+    // This thread's shadow cache entry for a light and ray depth (null: no caching).
+    const Object** ShadowCacheEntry(int lightIndex, int depth) const;
+    // Whether the entry's cached primitive blocks the segment (counted as a cache hit).
+    bool CachedBlockerAnswers(const Object** entry, const Ray& ray, double tMin,
+                              double dist) const;
     Color Atmosphere(const Ray& ray, double dist, const Color& c) const;
     const Surface& UntexturedSurface(const HitRecord& hit) const;
 

@@ -32,6 +32,10 @@ class Aggregate {
         return Intersect(ray, tMin, tMax, hit);
     }
 
+    // Whether every hit of a child is a hit of this aggregate (lists, grids); false for
+    // CSG, whose hits are only those on the combined solid's boundary.
+    virtual bool HitsAreChildHits() const { return true; }
+
     // Box around the bounded children (object space) and whether there are any.
     virtual Bounds3 Bounds() const = 0;
     virtual bool IsBounded() const = 0;

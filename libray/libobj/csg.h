@@ -14,6 +14,7 @@ class CsgAggregate final : public Aggregate {
     explicit CsgAggregate(Op op) : op_(op) {}
 
     const char* TypeName() const override;
+    bool HitsAreChildHits() const override { return false; }
 
     // Exactly two children (A first, then B) make a valid CSG node; the parser warns and
     // discards the node otherwise. An invalid node hits nothing.

@@ -77,6 +77,16 @@ bool Object::OccludedGeneral(const Ray& rayParent, double tMin, double tMax,
                                     : InstanceNode()->Occluded(ray, tMin, tMax, below);
 }
 
+const Object* Object::PlainPathPrimitive(const HitRecord& hit) {
+    if (hit.pathLength < 1 || hit.pathLength >= HitRecord::kMaxPath) return nullptr;
+    for (int i = 1; i < hit.pathLength; ++i) {
+        const Object& node = *hit.path[i];
+        if (!node.parentFromObject.IsIdentity()) return nullptr;
+        if (node.Is(Kind::Aggregate) && !node.AggregateNode()->HitsAreChildHits()) return nullptr;
+    }
+    return hit.path[0];
+}
+
 bool Object::IsClosed() const {
     switch (kind_) {
         case Kind::Primitive: return PrimitiveNode()->IsClosed();

@@ -77,6 +77,12 @@ class Object {
         return OccludedGeneral(rayParent, tMin, tMax, blocker);
     }
 
+    // The primitive node of a hit found by a search from the root of hit.path when every
+    // node above it on the path is a list, grid or instance without a transform, so that
+    // the primitive's own Occluded, given the root's ray, finds that hit again (the
+    // blocker of Occluded's contract); null otherwise, or when the path was cut short.
+    static const Object* PlainPathPrimitive(const HitRecord& hit);
+
     // Bounds in the parent's space for the current frame (union over the shutter interval
     // when animated) and whether the node is bounded at all (planes are not).
     const Bounds3& BoundsInParent() const { return boundsInParent_; }

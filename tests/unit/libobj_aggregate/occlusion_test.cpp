@@ -128,7 +128,7 @@ TEST(Occlusion, AgreesWithTheNearestHitSearchOnRandomRays) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
         Rng rng(seed);
         const auto nodes = Nodes(rng);
-        int occluded = 0, clear = 0, namedBelow = 0, unnamed = 0;
+        int occluded = 0, clear = 0, namedBelow = 0, unnamed = 0, hitsNamed = 0;
         for (size_t n = 0; n < nodes.size(); ++n) {
             const Object& node = *nodes[n];
             for (int i = 0; i < 400; ++i) {
@@ -145,6 +145,12 @@ TEST(Occlusion, AgreesWithTheNearestHitSearchOnRandomRays) {
                 ASSERT_EQ(node.Occluded(ray, tMin, tMax), nearest)
                     << "node " << n << " (" << node.TypeName() << "), ray " << i;
                 ++(nearest ? occluded : clear);
+                // The primitive a nearest hit names, when it names one, blocks the same ray.
+                if (const Object* primitive = nearest ? Object::PlainPathPrimitive(hit) : nullptr) {
+                    ASSERT_TRUE(ReachableThroughPlainNodes(node, primitive));
+                    ASSERT_TRUE(primitive->Occluded(ray, tMin, tMax));
+                    ++hitsNamed;
+                }
                 // The blocker named is one the same ray is blocked by, in the node's parent
                 // space (the shadow cache tests it on the world's ray).
                 const Object* blocker = nullptr;
@@ -168,6 +174,7 @@ TEST(Occlusion, AgreesWithTheNearestHitSearchOnRandomRays) {
         // Aggregates name primitives below them; CSG and transformed aggregates name none.
         EXPECT_GT(namedBelow, 300);
         EXPECT_GT(unnamed, 100);
+        EXPECT_GT(hitsNamed, 1000);
     }
 }
 
