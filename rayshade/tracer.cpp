@@ -23,15 +23,16 @@ const CounterId kReflectedRays = RegisterCounter("reflected rays");
 const CounterId kRefractedRays = RegisterCounter("refracted rays");
 const CounterId kHitRays = RegisterCounter("hit rays");
 const CounterId kShadowHits = RegisterCounter("shadow hits");
-// Opaque shadow rays the cached blocker answered, and blocked ones it did not.
+// Shadow rays a cached blocker answered, and those an opaque occluder blocked without it.
 const CounterId kShadowCacheHits = RegisterCounter("shadow cache hits");
 const CounterId kShadowCacheMisses = RegisterCounter("shadow cache misses");
 
-// One thread's shadow cache entries: blockers[lightIndex * depths + depth] is the node that
-// blocked that light's last opaque shadow ray from a hit at that depth, or null. The
-// entries are hints: a cached node is tested with the same query as the world and only a
-// blocking answer is taken from it, so images do not depend on which thread rendered what
-// or in which order; only the counters and the time do.
+// One thread's shadow cache entries: blockers[lightIndex * depths + depth] is the opaque
+// primitive that blocked that light's last shadow ray from a hit at that depth, or null
+// (the last ray was not blocked, or not by a primitive the world's ray can test directly,
+// see Object::Occluded). The entries are hints: a cached primitive is tested on the same
+// segment and only a blocking answer is taken from it, so images do not depend on which
+// thread rendered what or in which order; only the counters and the time do.
 struct ShadowCacheEntries {
     uint64_t owner = 0;  // the serial of the Tracer the entries belong to; 0: none
     std::vector<const Object*> blockers;

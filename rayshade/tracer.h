@@ -76,9 +76,9 @@ class Tracer {
     // No occluder can let light through (no transparent surface in the scene, or shadows
     // through transparent objects are off): shadow rays ask only whether anything is hit.
     bool opaqueShadows_;
-    // The shadow cache (spec §3.7; off with -s): what blocked the last opaque shadow ray
-    // of each light at each ray depth, kept per thread (see OpaqueOccluded) under this
-    // tracer's serial, so entries never outlive the scene they name.
+    // The shadow cache (spec §3.7; off with -s): the opaque primitive that blocked the
+    // last shadow ray of each light at each ray depth, kept per thread (tracer.cpp) under
+    // this tracer's serial, so entries are never read once the scene they name is gone.
     bool shadowCache_;
     int cacheDepths_;      // ray depths 0..maxDepth
     uint64_t serial_;      // unique among the tracers of this process
