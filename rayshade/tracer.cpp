@@ -152,11 +152,14 @@ Tracer::Tracer(const Scene& scene)
       options_(scene.options),
       opaqueShadows_(!options_.shadowTransparency ||
                      (defaultSurface_.transp < kEpsilon && !HasTransparentSurface(*scene.world))),
-      shadowCache_(options_.shadowCache && !scene.lights.empty() &&
-                   scene.lights.size() * (static_cast<size_t>(std::max(0, options_.maxDepth)) + 1) <=
-                       kMaxShadowCacheEntries),
-      cacheDepths_(std::max(0, options_.maxDepth) + 1),
-      serial_(gNextTracerSerial.fetch_add(1)) {}
+      serial_(gNextTracerSerial.fetch_add(1)) {
+    // Entries for depths 0..maxDepth of every light, counted in size_t (maxDepth may be
+    // INT_MAX for a library caller).
+    const size_t depths = static_cast<size_t>(std::max(0, options_.maxDepth)) + 1;
+    shadowCache_ = options_.shadowCache && !scene.lights.empty() &&
+                   depths <= kMaxShadowCacheEntries / scene.lights.size();
+    cacheDepths_ = shadowCache_ ? static_cast<int>(depths) : 0;
+}
 
 Color Tracer::TraceEye(const Ray& ray, SampleState& sample, bool& hit) const {
     Count(kEyeRays);
