@@ -156,9 +156,9 @@ Tracer::Tracer(const Scene& scene)
     // Entries for depths 0..maxDepth of every light, counted in size_t (maxDepth may be
     // INT_MAX for a library caller).
     const size_t depths = static_cast<size_t>(std::max(0, options_.maxDepth)) + 1;
-    shadowCache_ = options_.shadowCache && !scene.lights.empty() &&
-                   depths <= kMaxShadowCacheEntries / scene.lights.size();
-    cacheDepths_ = shadowCache_ ? static_cast<int>(depths) : 0;
+    if (options_.shadowCache && !scene.lights.empty() &&
+        depths <= kMaxShadowCacheEntries / scene.lights.size())
+        cacheDepths_ = static_cast<int>(depths);
 }
 
 Color Tracer::TraceEye(const Ray& ray, SampleState& sample, bool& hit) const {
@@ -374,7 +374,7 @@ Color Tracer::Shade(const Ray& ray, const HitRecord& hit, int depth, const Color
 }
 
 const Object** Tracer::ShadowCacheEntry(int lightIndex, int depth) const {
-    if (!shadowCache_ || depth < 0 || depth >= cacheDepths_) return nullptr;
+    if (depth >= cacheDepths_) return nullptr;  // depths count from 0; none when off
     ShadowCacheEntries& cache = tShadowCache;
     if (cache.owner != serial_) {
         cache.owner = serial_;

@@ -79,9 +79,10 @@ class Tracer {
     // The shadow cache (spec §3.7; off with -s): the opaque primitive that blocked the
     // last shadow ray of each light at each ray depth, kept per thread (tracer.cpp) under
     // this tracer's serial, so entries are never read once the scene they name is gone.
-    uint64_t serial_;           // unique among the tracers of this process
-    bool shadowCache_ = false;  // on, and few enough lights times depths (tracer.cpp)
-    int cacheDepths_ = 0;       // ray depths 0..maxDepth when on
+    uint64_t serial_;  // unique among the tracers of this process
+    // maxDepth + 1 (ray depths 0..maxDepth) when on; 0 when off (-s) or when there are no
+    // lights or too many lights times depths (tracer.cpp).
+    int cacheDepths_ = 0;
 };
 
 }  // namespace rs

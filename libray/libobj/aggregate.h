@@ -24,8 +24,9 @@ class Aggregate {
     // Whether any child has a hit with tMin < t < tMax (the shadow-ray question); the same
     // answer as Intersect's return value. Aggregates that can stop at the first hit found
     // override it and pass `blocker` to the children's Object::Occluded, which then name
-    // the blocking primitive below; the default runs the nearest-hit search and names none
-    // (a CSG hit is not any one child's), leaving *blocker as the caller set it (null).
+    // the blocking primitive below; the default runs the nearest-hit search and names none,
+    // leaving *blocker as the caller set it (null). CSG gets null from Object anyway
+    // (HitsAreChildHits).
     virtual bool Occluded(const Ray& ray, double tMin, double tMax,
                           const Object** /*blocker*/) const {
         HitRecord hit;

@@ -65,13 +65,12 @@ bool Object::OccludedGeneral(const Ray& rayParent, double tMin, double tMax,
     Ray storage;
     const Ray& ray = ObjectRay(rayParent, storage);
     if (kind_ == Kind::Primitive) return OccludedPrimitive(ray, tMin, tMax, blocker);
-    // Nothing is named unless a primitive below, seeing the same ray, names itself: the
-    // nodes below a transform see another ray, and CSG (Aggregate::Occluded's default)
-    // names none of its children. The search stops at the first child that blocks, and
-    // that child's call is the last to write *blocker (a child that did not block wrote
-    // before it), so the name left is the blocking chain's.
+    // Nothing is named unless a primitive below names itself and this node passes the name
+    // on. The search stops at the first child that blocks, and that child's call is the
+    // last to write *blocker (a child that did not block wrote before it), so the name
+    // left is the blocking chain's.
     if (blocker) *blocker = nullptr;
-    const Object** below = parentFromObject.IsIdentity() ? blocker : nullptr;
+    const Object** below = blocker != nullptr && PassesBlockerNames() ? blocker : nullptr;
     if (!BoxAdmits(ray, tMin, tMax)) return false;
     return kind_ == Kind::Aggregate ? AggregateNode()->Occluded(ray, tMin, tMax, below)
                                     : InstanceNode()->Occluded(ray, tMin, tMax, below);
@@ -79,11 +78,8 @@ bool Object::OccludedGeneral(const Ray& rayParent, double tMin, double tMax,
 
 const Object* Object::PlainPathPrimitive(const HitRecord& hit) {
     if (hit.pathLength < 1 || hit.pathLength >= HitRecord::kMaxPath) return nullptr;
-    for (int i = 1; i < hit.pathLength; ++i) {
-        const Object& node = *hit.path[i];
-        if (!node.parentFromObject.IsIdentity()) return nullptr;
-        if (node.Is(Kind::Aggregate) && !node.AggregateNode()->HitsAreChildHits()) return nullptr;
-    }
+    for (int i = 1; i < hit.pathLength; ++i)
+        if (!hit.path[i]->PassesBlockerNames()) return nullptr;
     return hit.path[0];
 }
 

@@ -144,6 +144,13 @@ class Object {
     }
     bool OccludedGeneral(const Ray& rayParent, double tMin, double tMax,
                          const Object** blocker) const;
+    // Whether a blocker named below this node is one for this node's parent space too (the
+    // plain nodes of Occluded's contract): no transform, so the nodes below see the same
+    // ray, and not CSG, whose hits are not simply its children's.
+    bool PassesBlockerNames() const {
+        return parentFromObject.IsIdentity() &&
+               !(Is(Kind::Aggregate) && !AggregateNode()->HitsAreChildHits());
+    }
     // The ray in this node's object space: rayParent itself without a transform, else
     // mapped into `storage`.
     const Ray& ObjectRay(const Ray& rayParent, Ray& storage) const {
