@@ -154,8 +154,8 @@ std::string Token::Describe() const {
     return quoted;
 }
 
-Lexer::Lexer(std::string text, std::string fileName)
-    : text_(std::move(text)), file_(InternFileName(fileName)) {}
+Lexer::Lexer(std::string text, std::string fileName, int firstLine)
+    : text_(std::move(text)), file_(InternFileName(fileName)), line_(firstLine) {}
 
 const std::string* InternFileName(const std::string& name) {
     static std::mutex mutex;
@@ -461,8 +461,8 @@ bool Lexer::ReadNumber(Token& tok) {
     return true;
 }
 
-TokenStream::TokenStream(std::string text, std::string fileName)
-    : lexer_(std::move(text), std::move(fileName)), ring_(kInitialRing) {}
+TokenStream::TokenStream(std::string text, std::string fileName, int firstLine)
+    : lexer_(std::move(text), std::move(fileName), firstLine), ring_(kInitialRing) {}
 
 void TokenStream::Push() {
     if (count_ == ring_.size()) {

@@ -63,8 +63,9 @@ const std::string* InternFileName(const std::string& name);
 
 class Lexer {
   public:
-    // `fileName` names the text in locations until a line marker says otherwise.
-    Lexer(std::string text, std::string fileName);
+    // `fileName` names the text in locations until a line marker says otherwise; the text
+    // starts at line `firstLine` of it (a piece of a larger text starts further down).
+    Lexer(std::string text, std::string fileName, int firstLine = 1);
 
     Token Next();
     // The same into `tok`.
@@ -76,6 +77,16 @@ class Lexer {
     // consumed.
     bool NextLiteral(double& value);
     bool StartsExpression();
+
+    // The text lexed; tokens view it.
+    const std::string& Text() const { return text_; }
+    // Continues at byte `offset` of the text, a token's start on line `line` of the file
+    // named last (no line marker may lie between the current position and `offset`).
+    void SeekTo(size_t offset, int line) {
+        pos_ = offset;
+        line_ = line;
+        atLineStart_ = offset == 0 || text_[offset - 1] == '\n';
+    }
 
   private:
     // Where the lexer is, to go back to after looking past a sign.
@@ -125,7 +136,7 @@ class Lexer {
 // token). Its tokens view its text: they are valid while the stream lives.
 class TokenStream {
   public:
-    TokenStream(std::string text, std::string fileName);
+    TokenStream(std::string text, std::string fileName, int firstLine = 1);
     TokenStream(const TokenStream&) = delete;
     TokenStream& operator=(const TokenStream&) = delete;
 
@@ -145,6 +156,16 @@ class TokenStream {
     // The lexer, when ReadLiteral and PeekExpression may ask it directly (NextLiteral,
     // StartsExpression): no token is buffered; else null.
     Lexer* DirectLexer() { return count_ == 0 ? &lexer_ : nullptr; }
+    // Where a token of this stream starts in its text (Lexer::Text).
+    size_t Offset(const Token& t) const {
+        return static_cast<size_t>(t.text.data() - lexer_.Text().data());
+    }
+    const std::string& Text() const { return lexer_.Text(); }
+    // Drops the buffered tokens and continues at `offset` (Lexer::SeekTo).
+    void SeekTo(size_t offset, int line) {
+        head_ = count_ = 0;
+        lexer_.SeekTo(offset, line);
+    }
     Token Next() {
         if (count_ == 0) Push();
         Token t = std::move(ring_[head_]);

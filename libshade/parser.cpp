@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <string_view>
 #include <unordered_map>
 
 #include "libcommon/limits.h"
 #include "libcommon/constants.h"
+#include "libcommon/parallel_build.h"
 #include "liblight/lights.h"
 #include "libobj/csg.h"
 #include "libobj/grid.h"
@@ -96,6 +98,16 @@ class Parser final : public ParserServices {
         scene_.options = options;
         scopes_.emplace_back();
     }
+    // A parser of one piece of a parallel run (ParsePrimitiveRun): `piece` starts at line
+    // `firstLine` of `fileName`, in the innermost scope of `from` with its surfaces and
+    // symbols as they are now.
+    Parser(const Parser& from, std::string piece, const std::string& fileName, int firstLine)
+        : tokens_(std::move(piece), fileName, firstLine),
+          symbols_(from.symbols_),
+          scopes_{from.scopes_.back()},
+          surfaces_(from.surfaces_) {
+        scene_.options = from.scene_.options;
+    }
 
     Scene Parse();
 
@@ -127,6 +139,17 @@ class Parser final : public ParserServices {
     void ParseSurfaceDefinition();
 
     std::shared_ptr<Object> ParseInstance();
+
+    // Parallel runs of primitive statements (see the comment above ParsePrimitiveRun).
+    struct RunPiece;
+    // Parses a run of primitive statements starting at the next token in pieces on the
+    // build loop's threads, appending the objects to `into`; returns false, having read
+    // nothing, where a run does not pay or its first statement is not a plain primitive.
+    bool ParsePrimitiveRun(std::vector<std::shared_ptr<Object>>& into);
+    // The statements of this piece parser's text up to its first one that is not a plain
+    // primitive or that reports anything.
+    void ParsePiece(RunPiece& piece);
+
     // `row`: the primitive the next token names.
     std::shared_ptr<Object> ParsePrimitive(const PrimitiveEntry& row);
     std::shared_ptr<Object> ParseAggregate();
@@ -152,6 +175,9 @@ class Parser final : public ParserServices {
     std::unordered_map<const Object*, NodeDepth> depths_;
     std::vector<std::shared_ptr<Object>> worldChildren_;
     bool advisedOpenCsgOperand_ = false;
+    // No parallel run starts before this offset of the text (one piece past where the last
+    // one stopped short, so text that keeps stopping runs is parsed serially).
+    size_t nextRunOffset_ = 0;
 };
 
 Scene Parser::Parse() {
@@ -201,6 +227,7 @@ bool Parser::ParseScopedItem(std::vector<std::shared_ptr<Object>>& into) {
         }
         objects_[name] = node;  // a later definition shadows an earlier one silently
     } else if (IsPrimitiveKeyword(k) || IsAggregateKeyword(k) || k == "object") {
+        if (ParsePrimitiveRun(into)) return true;
         if (std::shared_ptr<Object> node = ParseInstance()) into.push_back(std::move(node));
     } else {
         return false;
@@ -568,6 +595,146 @@ void Parser::ParseSurfaceDefinition() {
                   "' is transparent but its index of refraction is not positive");
     if (surfaces_.count(name)) args.Warn("Redefinition of surface '" + name + "'");
     surfaces_[name] = s;
+}
+
+// Parallel runs of primitive statements. A large scene is mostly long runs of primitives
+// (the SPD files: 10^5 to 10^6 polygons, spheres or cones in one grid), and parsing them was
+// most of its setup. Where a primitive statement starts at least two pieces of text
+// (kRunPieceBytes each) before the end, the text ahead is cut into pieces at lines that
+// begin with a primitive keyword, and waves of kRunPieces pieces are parsed on the build
+// loop's threads, each by a parser with a copy of this one's surfaces, symbols and default
+// surface, its reports held back (HeldReports). A piece stops at its first statement that
+// is not a plain primitive (a row that createsConcurrently, then transforms, no texture),
+// that reports anything or fails. The pieces' objects are taken in order up to and
+// including the first piece that stopped short of its end, and this parser goes on from
+// where that one stopped: whatever reported is parsed again the serial way, so objects,
+// their order and every diagnostic are the serial parse's. A cut that is no statement start
+// (inside a comment or an implicit block) makes the piece before it stop short, so nothing
+// after it is taken. Runs start only while a build loop is installed and the wave's text
+// holds no line marker ('#'), so that lines count from the run's first token.
+
+// About 6,000 triangles: a piece's fixed costs (a parser, a copy of its text, a loop index)
+// are well under a percent of parsing it.
+constexpr size_t kRunPieceBytes = 256 * 1024;
+// Pieces per wave: enough to keep a few threads busy, few enough that a run ending (an
+// aggregate's `end`) wastes at most a wave of speculative parsing. The text's last wave
+// may be shorter; runs of fewer pieces do not start.
+constexpr size_t kRunPieces = 8;
+constexpr size_t kRunMinPieces = 2;
+
+// Whether the word at text[p] (after blanks) spells a keyword whose row createsConcurrently;
+// sets `start` to the word's offset.
+bool StartsConcurrentPrimitive(const std::string& text, size_t p, size_t& start) {
+    while (p < text.size() && (text[p] == ' ' || text[p] == '\t')) ++p;
+    size_t end = p;
+    while (end < text.size() && text[end] >= 'a' && text[end] <= 'z') ++end;
+    if (end == p || end >= text.size() || (text[end] != ' ' && text[end] != '\t')) return false;
+    const PrimitiveEntry* row = FindPrimitive(CanonicalKeyword(text.substr(p, end - p)));
+    start = p;
+    return row && row->createsConcurrently;
+}
+
+// The first offset at or after `from` where a line begins with such a keyword, or the end.
+size_t NextPieceStart(const std::string& text, size_t from) {
+    size_t p = from;
+    while (true) {
+        const void* nl = p < text.size() ? std::memchr(text.data() + p, '\n', text.size() - p) : nullptr;
+        if (!nl) return text.size();
+        p = static_cast<size_t>(static_cast<const char*>(nl) - text.data()) + 1;
+        size_t start;
+        if (StartsConcurrentPrimitive(text, p, start)) return start;
+    }
+}
+
+struct Parser::RunPiece {
+    size_t begin = 0, end = 0;  // offsets in the whole text
+    int firstLine = 0;
+    std::vector<std::shared_ptr<Object>> objects;
+    bool complete = false;      // parsed to its end
+    size_t stop = 0;            // else: the offset (in the piece) of the statement it stopped at
+    int stopLine = 0;
+};
+
+void Parser::ParsePiece(RunPiece& piece) {
+    const HeldReports held;
+    try {
+        while (true) {
+            const Token& t = tokens_.Peek();
+            if (t.kind == TokenKind::End) {
+                piece.complete = true;
+                return;
+            }
+            piece.stop = tokens_.Offset(t);
+            piece.stopLine = t.line;
+            const PrimitiveEntry* row =
+                t.kind == TokenKind::Keyword ? FindPrimitive(t.keyword) : nullptr;
+            if (!row || !row->createsConcurrently) return;
+            std::shared_ptr<Object> node = ParsePrimitive(*row);
+            TransformList transforms;
+            ParseTransforms(transforms);
+            if (!node || held.Count() > 0 || tokens_.Peek().IsKeyword("texture")) return;
+            node->parentFromObject = std::move(transforms);
+            piece.objects.push_back(std::move(node));
+        }
+    } catch (const FatalError&) {
+        // Held: the statement at piece.stop is parsed again serially.
+    }
+}
+
+bool Parser::ParsePrimitiveRun(std::vector<std::shared_ptr<Object>>& into) {
+    const Token& first = tokens_.Peek();
+    const std::string& text = tokens_.Text();
+    const size_t runStart = tokens_.Offset(first);
+    const PrimitiveEntry* row = FindPrimitive(first.keyword);
+    if (!BuildLoopInstalled() || runStart < nextRunOffset_ || !row || !row->createsConcurrently ||
+        text.size() - runStart < kRunMinPieces * kRunPieceBytes) {
+        return false;
+    }
+    const std::string& fileName = *first.file;
+    size_t waveStart = runStart;
+    int waveLine = first.line;
+    size_t taken = 0;
+    while (text.size() - waveStart >= kRunMinPieces * kRunPieceBytes) {
+        std::vector<RunPiece> pieces(
+            std::min(kRunPieces, (text.size() - waveStart) / kRunPieceBytes));
+        size_t at = waveStart;
+        int line = waveLine;
+        for (RunPiece& piece : pieces) {
+            piece.begin = at;
+            piece.end = NextPieceStart(text, at + kRunPieceBytes);
+            piece.firstLine = line;
+            line += static_cast<int>(std::count(text.begin() + piece.begin, text.begin() + piece.end, '\n'));
+            at = piece.end;
+        }
+        if (const void* marker = std::memchr(text.data() + waveStart, '#', at - waveStart)) {
+            nextRunOffset_ = static_cast<size_t>(static_cast<const char*>(marker) - text.data()) + 1;
+            break;
+        }
+        RunBuildLoop(static_cast<long>(pieces.size()), [&](long i) {
+            RunPiece& piece = pieces[i];
+            Parser pieceParser(*this, text.substr(piece.begin, piece.end - piece.begin), fileName,
+                               piece.firstLine);
+            pieceParser.ParsePiece(piece);
+        });
+        for (RunPiece& piece : pieces) {
+            taken += piece.objects.size();
+            into.insert(into.end(), std::make_move_iterator(piece.objects.begin()),
+                        std::make_move_iterator(piece.objects.end()));
+            if (!piece.complete) {
+                nextRunOffset_ = piece.begin + piece.stop + kRunPieceBytes;
+                if (taken == 0) return false;  // the tokens are where they were
+                tokens_.SeekTo(piece.begin + piece.stop, piece.stopLine);
+                scene_.parallelParsedObjects += taken;
+                return true;
+            }
+        }
+        waveStart = at;
+        waveLine = line;
+    }
+    if (taken == 0) return false;
+    tokens_.SeekTo(waveStart, waveLine);
+    scene_.parallelParsedObjects += taken;
+    return true;
 }
 
 std::shared_ptr<Object> Parser::ParseInstance() {

@@ -21,6 +21,10 @@ struct PrimitiveEntry {
     // For primitives whose own arguments may begin with a NAME (a sub-keyword): whether a
     // NAME right after the keyword starts the arguments rather than naming a surface.
     bool (*startsArguments)(const std::string& word) = nullptr;
+    // Whether `create` may run on several threads at once (the parser's parallel runs of
+    // primitive statements, parser.cpp): it reads only its arguments and changes no state
+    // shared between objects (no numbering by creation order, no file or cache).
+    bool createsConcurrently = false;
 };
 
 const std::vector<PrimitiveEntry>& PrimitiveRegistry();

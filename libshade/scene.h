@@ -2,6 +2,7 @@
 // Defaults are the original program's (spec §3.2, §3.16).
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -104,6 +105,8 @@ struct Scene {
     std::shared_ptr<Object> world;
     // Objects defined with `name`, in order of definition (for the verbose report).
     std::vector<std::shared_ptr<Object>> namedObjects;
+    // Primitives the parser read in parallel runs (parser.cpp; for the verbose report).
+    std::size_t parallelParsedObjects = 0;
 };
 
 }  // namespace rs

@@ -183,11 +183,23 @@ int Run(int argc, char** argv) {
     if (cl.options.verbose) std::fprintf(gStats, "rayshade 4.0 (C++ re-creation), patch level 6\nReading input file...\n");
 
     auto start = std::chrono::steady_clock::now();
+    // The render's threads, started once (the thread count is the command line's: scenes
+    // cannot set it): the parser's runs of primitives and each frame's acceleration builds
+    // run on them (RunBuildLoop), then each frame's pixels.
+    const int threads = rs::Renderer::ThreadCount(cl.options);
+    rs::WorkerPool workers(threads);
+    const rs::ParallelLoop buildLoop = [&workers](long count, const std::function<void(long)>& body) {
+        workers.Run(count, body, false);
+    };
     rs::ParseInput input;
     input.path = cl.inputFile;
     input.useCpp = cl.useCpp;
     input.cppArgs = cl.cppArgs;
-    rs::Scene scene = rs::ParseScene(input, cl.options);
+    rs::Scene scene = [&] {
+        // (On one thread the parser's runs would only add their speculation's cost.)
+        const rs::ParallelBuildScope parallelParse(threads > 1 ? &buildLoop : nullptr);
+        return rs::ParseScene(input, cl.options);
+    }();
     if (!cl.implicit.Empty() &&
         rs::ApplyImplicitOverrides(*scene.world, cl.implicit, error) < 0)
         rs::Report(Severity::Abort, {}, "%s", error.c_str());
@@ -234,12 +246,6 @@ int Run(int argc, char** argv) {
     }
 
     rs::RunTimes times;
-    // The render's threads, started once: each frame's acceleration builds run on them
-    // (RunBuildLoop), then its pixels.
-    rs::WorkerPool workers(rs::Renderer::ThreadCount(o));
-    const rs::ParallelLoop buildLoop = [&workers](long count, const std::function<void(long)>& body) {
-        workers.Run(count, body, false);
-    };
     for (int f = firstFrame; f < o.startFrame + o.frames; ++f) {
         double frameTime = o.startTime + f * o.frameLength;
         rs::SetCurrentFrame(f);

@@ -48,6 +48,8 @@ void WriteOptionsSummary(std::FILE* out, const Scene& scene, int threads) {
                                                                   : "Opaque shadows"));
     if (!o.shadowCache) std::fprintf(out, "Shadow cache disabled\n");
     std::fprintf(out, "Threads: %d\n", threads);
+    if (scene.parallelParsedObjects > 0)
+        std::fprintf(out, "Primitives parsed in parallel: %zu\n", scene.parallelParsedObjects);
 }
 
 void WriteStatistics(std::FILE* out, const RunTimes& times) {

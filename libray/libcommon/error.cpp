@@ -29,7 +29,14 @@ std::string FormatV(const char* format, va_list args) {
     return std::string(buf.data(), static_cast<size_t>(n));
 }
 
+// The innermost HeldReports of this thread, or null.
+thread_local HeldReports* tHeld = nullptr;
+
 }  // namespace
+
+HeldReports::HeldReports() : previous_(tHeld) { tHeld = this; }
+
+HeldReports::~HeldReports() { tHeld = previous_; }
 
 ErrorSink SetErrorSink(ErrorSink sink) {
     std::lock_guard<std::mutex> lock(SinkMutex());
@@ -39,12 +46,18 @@ ErrorSink SetErrorSink(ErrorSink sink) {
 }
 
 void ReportV(Severity severity, const SourceLocation& where, const char* format, va_list args) {
+    const bool fatal = severity == Severity::Abort || severity == Severity::Panic;
+    if (tHeld) {
+        ++tHeld->count_;
+        if (fatal) throw FatalError(severity, "held report");
+        return;
+    }
     Diagnostic d{severity, where, FormatV(format, args)};
     {
         std::lock_guard<std::mutex> lock(SinkMutex());
         if (CurrentSink()) CurrentSink()(d);
     }
-    if (severity == Severity::Abort || severity == Severity::Panic) {
+    if (fatal) {
         std::string what = where.IsKnown()
                                ? where.file + ":" + std::to_string(where.line) + ": " + d.message
                                : d.message;

@@ -40,6 +40,24 @@ using ErrorSink = std::function<void(const Diagnostic&)>;
 // installed, diagnostics are dropped (fatal ones still throw).
 ErrorSink SetErrorSink(ErrorSink sink);
 
+// While one lives, reports made on its thread reach no sink: it counts them instead (fatal
+// ones still throw FatalError). For speculative work that is redone in the usual way
+// wherever it reported anything (the parser's parallel runs of primitives). Scopes nest;
+// the innermost counts.
+class HeldReports {
+  public:
+    HeldReports();
+    ~HeldReports();
+    HeldReports(const HeldReports&) = delete;
+    HeldReports& operator=(const HeldReports&) = delete;
+    int Count() const { return count_; }
+
+  private:
+    friend void ReportV(Severity, const SourceLocation&, const char*, va_list);
+    HeldReports* previous_;
+    int count_ = 0;
+};
+
 // Formats printf-style and reports. Throws FatalError for Abort and Panic.
 void Report(Severity severity, const SourceLocation& where, const char* format, ...)
     __attribute__((format(printf, 3, 4)));

@@ -26,4 +26,6 @@ void RunBuildLoop(long count, const std::function<void(long)>& body) {
     loop(count, body);
 }
 
+bool BuildLoopInstalled() { return tInstalled != nullptr; }
+
 }  // namespace rs

@@ -33,4 +33,8 @@ class ParallelBuildScope {
 // be re-entrant).
 void RunBuildLoop(long count, const std::function<void(long)>& body);
 
+// Whether RunBuildLoop calls made on this thread now may run concurrently (a loop is
+// installed): for work that pays only when they do.
+bool BuildLoopInstalled();
+
 }  // namespace rs
