@@ -300,6 +300,11 @@ int Run(int argc, char** argv) {
     times.cpuSystemSeconds = CpuSeconds(false);
     if (o.verbose) rs::WriteStatistics(gStats, times);
     if (gStats != stderr) std::fclose(gStats);
+    // The scene is left to the process's end, which returns its memory at once: freeing a
+    // large scene's million nodes one by one took about 5% of tetra's setup time, on one
+    // thread after the image was written. (Kept reachable, so leak checkers stay quiet.)
+    static const rs::Scene* const kSceneLeftToExit = new rs::Scene(std::move(scene));
+    (void)kSceneLeftToExit;
     return 0;
 }
 
