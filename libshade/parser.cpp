@@ -682,14 +682,14 @@ void Parser::ParsePiece(RunPiece& piece) {
 }
 
 bool Parser::ParsePrimitiveRun(std::vector<std::shared_ptr<Object>>& into) {
+    if (!BuildLoopInstalled()) return false;
     const Token& first = tokens_.Peek();
     const std::string& text = tokens_.Text();
     const size_t runStart = tokens_.Offset(first);
-    const PrimitiveEntry* row = FindPrimitive(first.keyword);
-    if (!BuildLoopInstalled() || runStart < nextRunOffset_ || !row || !row->createsConcurrently ||
-        text.size() - runStart < kRunMinPieces * kRunPieceBytes) {
+    if (runStart < nextRunOffset_ || text.size() - runStart < kRunMinPieces * kRunPieceBytes)
         return false;
-    }
+    const PrimitiveEntry* row = FindPrimitive(first.keyword);
+    if (!row || !row->createsConcurrently) return false;
     const std::string& fileName = *first.file;
     size_t waveStart = runStart;
     int waveLine = first.line;

@@ -329,10 +329,13 @@ int BoundingVolumeHierarchy::BuildNode(std::vector<Node>& nodes, std::vector<int
     ChunkedPass(
         begin, end, bounds,
         [&](NodeBounds& part, int from, int to) {
+            // In locals, which the compiler keeps in registers (`part` might alias the input).
+            Bounds3 partBox, partCentroids;
             for (int i = from; i < to; ++i) {
-                part.box.Extend(input.boxes[items[i]]);
-                part.centroids.Extend(input.centres[items[i]]);
+                partBox.Extend(input.boxes[items[i]]);
+                partCentroids.Extend(input.centres[items[i]]);
             }
+            part = {partBox, partCentroids};
         },
         [](NodeBounds& into, const NodeBounds& part) {
             into.box.Extend(part.box);
