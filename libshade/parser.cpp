@@ -601,7 +601,7 @@ void Parser::ParseSurfaceDefinition() {
 // (the SPD files: 10^5 to 10^6 polygons, spheres or cones in one grid), and parsing them was
 // most of its setup. Where a primitive statement starts at least two pieces of text
 // (kRunPieceBytes each) before the end, the text ahead is cut into pieces at lines that
-// begin with a primitive keyword, and waves of kRunPieces pieces are parsed on the build
+// begin with a primitive keyword, and waves of up to kRunPieces pieces are parsed on the build
 // loop's threads, each by a parser with a copy of this one's surfaces, symbols and default
 // surface, its reports held back (HeldReports). A piece stops at its first statement that
 // is not a plain primitive (a row that createsConcurrently, then transforms, no texture),
@@ -616,9 +616,12 @@ void Parser::ParseSurfaceDefinition() {
 // About 6,000 triangles: a piece's fixed costs (a parser, a copy of its text, a loop index)
 // are well under a percent of parsing it.
 constexpr size_t kRunPieceBytes = 256 * 1024;
-// Pieces per wave: enough to keep a few threads busy, few enough that a run ending (an
-// aggregate's `end`) wastes at most a wave of speculative parsing. The text's last wave
-// may be shorter; runs of fewer pieces do not start.
+// Pieces per wave: a run's first wave has kRunMinPieces, each wave parsed to its end
+// doubles the next up to kRunPieces, enough to keep a few threads busy. A run's end (an
+// aggregate's `end`, a named object) wastes the pieces after it in its wave, so at most
+// about a third of the run's parallel work when it ends in its first few waves, and the
+// ramp keeps short runs between frequent stops from paying for whole waves. Runs of fewer
+// than kRunMinPieces pieces do not start.
 constexpr size_t kRunPieces = 8;
 constexpr size_t kRunMinPieces = 2;
 
@@ -694,9 +697,10 @@ bool Parser::ParsePrimitiveRun(std::vector<std::shared_ptr<Object>>& into) {
     size_t waveStart = runStart;
     int waveLine = first.line;
     size_t taken = 0;
+    size_t waveSize = kRunMinPieces;  // doubled after each wave parsed to its end
     while (text.size() - waveStart >= kRunMinPieces * kRunPieceBytes) {
-        std::vector<RunPiece> pieces(
-            std::min(kRunPieces, (text.size() - waveStart) / kRunPieceBytes));
+        std::vector<RunPiece> pieces(std::min(waveSize, (text.size() - waveStart) / kRunPieceBytes));
+        waveSize = std::min(kRunPieces, 2 * waveSize);
         size_t at = waveStart;
         int line = waveLine;
         for (RunPiece& piece : pieces) {
@@ -721,9 +725,14 @@ bool Parser::ParsePrimitiveRun(std::vector<std::shared_ptr<Object>>& into) {
             into.insert(into.end(), std::make_move_iterator(piece.objects.begin()),
                         std::make_move_iterator(piece.objects.end()));
             if (!piece.complete) {
-                nextRunOffset_ = piece.begin + piece.stop + kRunPieceBytes;
+                const size_t stop = piece.begin + piece.stop;
+                // A run that ended within a piece's length leaves the next piece's length
+                // to the serial parser (text of short runs); a longer one is tried again
+                // right after the statement that stopped it (long runs between, say,
+                // named objects).
+                nextRunOffset_ = stop - runStart < kRunPieceBytes ? stop + kRunPieceBytes : stop + 1;
                 if (taken == 0) return false;  // the tokens are where they were
-                tokens_.SeekTo(piece.begin + piece.stop, piece.stopLine);
+                tokens_.SeekTo(stop, piece.stopLine);
                 scene_.parallelParsedObjects += taken;
                 return true;
             }
