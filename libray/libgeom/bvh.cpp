@@ -222,6 +222,34 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
         const Int4 b = __builtin_convertvector(rel > 0 ? rel : Float4{}, Int4);
         return b < kBins - 1 ? b : Int4{} + (kBins - 1);
     };
+    // Half the area of a bin union, 0 when empty.
+    const auto halfArea = [](const Float4& lo, const Float4& hi) {
+        const Float4 e = hi - lo;
+        return e[0] >= 0 ? static_cast<double>(e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) : 0.0;
+    };
+    // Two items (about half the calls: most nodes just above the leaves): the choice the
+    // bins' sweeps below would make, without filling them. An axis whose two centres fall in
+    // different bins offers one split, the lower bin's item against the other, of cost
+    // 1 + (A_lower + A_upper) / A (the sweeps' A·N terms with N = 1, exactly), the same on
+    // every such axis; the sweeps keep the first axis of least cost, and std::partition
+    // puts the lower item first.
+    static_assert(kMaxSahLeaf >= 2, "two items that are not split make a leaf");
+    if (count == 2) {
+        int& first = items[begin];
+        int& second = items[begin + 1];
+        const Int4 b0 = binsOf(first), b1 = binsOf(second);
+        for (int a = 0; a < 3; ++a) {
+            if (!(cExtent[a] > 0) || b0[a] == b1[a]) continue;
+            const double cost = 1 + (halfArea(input.binLo[first], input.binHi[first]) +
+                                     halfArea(input.binLo[second], input.binHi[second])) /
+                                        area;
+            if (!(cost < bestCost)) break;
+            axis = a;
+            if (b1[a] < b0[a]) std::swap(first, second);
+            return begin + 1;
+        }
+        return kSahLeaf;
+    }
     // One pass over the items fills the bins of all three axes (each box read once).
     constexpr float kInf = std::numeric_limits<float>::infinity();
     struct Bins {
@@ -259,11 +287,6 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     const auto& binLo = bins.lo;
     const auto& binHi = bins.hi;
     const auto& counts = bins.counts;
-    // Half the area of a bin union, 0 when empty.
-    const auto halfArea = [](const Float4& lo, const Float4& hi) {
-        const Float4 e = hi - lo;
-        return e[0] >= 0 ? static_cast<double>(e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) : 0.0;
-    };
     // An empty bin leaves both sweeps' unions and counts as they were, so every split between
     // two consecutive non-empty bins costs the same, and the first of them is the one just
     // after the lower bin: the sweeps run over the non-empty bins only (small nodes fill
