@@ -175,8 +175,8 @@ class Parser final : public ParserServices {
     std::unordered_map<const Object*, NodeDepth> depths_;
     std::vector<std::shared_ptr<Object>> worldChildren_;
     bool advisedOpenCsgOperand_ = false;
-    // No parallel run starts before this offset of the text (one piece past where the last
-    // one stopped short, so text that keeps stopping runs is parsed serially).
+    // No parallel run starts before this offset of the text: past the statement that
+    // stopped the last run, and a piece further when that run was short (ParsePrimitiveRun).
     size_t nextRunOffset_ = 0;
 };
 
