@@ -697,6 +697,13 @@ bool Parser::ParsePrimitiveRun(std::vector<std::shared_ptr<Object>>& into) {
     size_t waveStart = runStart;
     int waveLine = first.line;
     size_t taken = 0;
+    // Continues the serial parse at `offset` after the objects taken, if any.
+    const auto resumeAt = [&](size_t offset, int line) {
+        if (taken == 0) return false;  // the tokens are where they were
+        tokens_.SeekTo(offset, line);
+        scene_.parallelParsedObjects += taken;
+        return true;
+    };
     size_t waveSize = kRunMinPieces;  // doubled after each wave parsed to its end
     while (text.size() - waveStart >= kRunMinPieces * kRunPieceBytes) {
         std::vector<RunPiece> pieces(std::min(waveSize, (text.size() - waveStart) / kRunPieceBytes));
@@ -731,19 +738,13 @@ bool Parser::ParsePrimitiveRun(std::vector<std::shared_ptr<Object>>& into) {
                 // right after the statement that stopped it (long runs between, say,
                 // named objects).
                 nextRunOffset_ = stop - runStart < kRunPieceBytes ? stop + kRunPieceBytes : stop + 1;
-                if (taken == 0) return false;  // the tokens are where they were
-                tokens_.SeekTo(stop, piece.stopLine);
-                scene_.parallelParsedObjects += taken;
-                return true;
+                return resumeAt(stop, piece.stopLine);
             }
         }
         waveStart = at;
         waveLine = line;
     }
-    if (taken == 0) return false;
-    tokens_.SeekTo(waveStart, waveLine);
-    scene_.parallelParsedObjects += taken;
-    return true;
+    return resumeAt(waveStart, waveLine);
 }
 
 std::shared_ptr<Object> Parser::ParseInstance() {

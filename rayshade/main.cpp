@@ -14,7 +14,6 @@
 #include <cstring>
 #include <functional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "libcommon/error.h"
@@ -262,8 +261,7 @@ int Run(int argc, char** argv) {
                     named->PrepareFrame(frameTime, o.shutter);  // also those never instanced
                     rs::WriteObjectSummary(gStats, *named);
                 }
-                unsigned hw = std::thread::hardware_concurrency();
-                rs::WriteOptionsSummary(gStats, scene, o.threads > 0 ? o.threads : static_cast<int>(hw ? hw : 1));
+                rs::WriteOptionsSummary(gStats, scene, threads);
             }
             rs::WriteObjectSummary(gStats, *scene.world);
         }
@@ -294,7 +292,7 @@ int Run(int argc, char** argv) {
                 rs::Report(Severity::Abort, {}, "cannot write the image to standard output");
         } else {
             std::string name = o.frames > 1 ? FrameFileName(o.outFile, f) : o.outFile;
-            if (!rs::WriteImage(name, image, error, rs::Renderer::ThreadCount(scene.options)))
+            if (!rs::WriteImage(name, image, error, threads))
                 rs::Report(Severity::Abort, {}, "%s", error.c_str());
             std::remove(partialPath.c_str());  // the frame is complete
         }
