@@ -1,5 +1,6 @@
 #include "rayshade/checkpoint.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -90,6 +91,25 @@ std::string RenderFingerprint(const std::vector<std::string>& args, const std::s
     return f + "scene " + std::to_string(hash);
 }
 
+SceneFileStamp StampSceneFile(const std::string& path) {
+    struct stat info;
+    if (path.empty() || stat(path.c_str(), &info) != 0) return {};
+    const auto ns = [](const timespec& t) { return static_cast<long long>(t.tv_sec) * 1000000000LL + t.tv_nsec; };
+    return {static_cast<long long>(info.st_dev), static_cast<long long>(info.st_ino),
+            static_cast<long long>(info.st_size), ns(info.st_mtim), ns(info.st_ctim)};
+}
+
+LazyRenderFingerprint::LazyRenderFingerprint(std::vector<std::string> args, std::string inputFile)
+    : args_(std::move(args)), inputFile_(std::move(inputFile)), readStamp_(StampSceneFile(inputFile_)) {}
+
+const std::string& LazyRenderFingerprint::Get() {
+    if (fingerprint_.empty()) {
+        fingerprint_ = RenderFingerprint(args_, inputFile_);
+        if (!(StampSceneFile(inputFile_) == readStamp_)) fingerprint_ += "\nscene changed while rendering";
+    }
+    return fingerprint_;
+}
+
 std::string DescribeFingerprintDifference(const std::string& saved, const std::string& current) {
     auto lines = [](const std::string& text) {
         std::vector<std::string> out;
@@ -114,9 +134,9 @@ std::string DescribeFingerprintDifference(const std::string& saved, const std::s
     auto option = [](const std::string& line) { return line.substr(0, line.find(' ')); };
     const std::string lost = only(was, now), added = only(now, was);
     if (lost.empty() && added.empty()) return {};
-    if (option(lost) == "scene" || option(added) == "scene") {
-        if (option(lost) == option(added)) return "the scene file has changed since";
-    }
+    // Another hash, or the line of a scene that changed while the saved render ran.
+    if (option(lost) == "scene" && (added.empty() || option(added) == "scene"))
+        return "the scene file has changed since";
     if (!lost.empty() && !added.empty() && option(lost) == option(added))
         return "it was saved with " + lost + ", not " + added;
     if (!lost.empty() && option(lost) != "scene") return "it was saved with " + lost + ", which this command lacks";

@@ -193,6 +193,7 @@ int Run(int argc, char** argv) {
     const rs::ParallelLoop buildLoop = [&workers](long count, const std::function<void(long)>& body) {
         workers.Run(count, body, false);
     };
+    rs::LazyRenderFingerprint fingerprint(std::vector<std::string>(argv + 1, argv + argc), cl.inputFile);
     rs::ParseInput input;
     input.path = cl.inputFile;
     input.useCpp = cl.useCpp;
@@ -221,14 +222,12 @@ int Run(int argc, char** argv) {
 
     // Continued rendering: the partial state names the frame in progress; earlier frames
     // were written before the interruption.
-    const std::string fingerprint =
-        rs::RenderFingerprint(std::vector<std::string>(argv + 1, argv + argc), cl.inputFile);
     const std::string partialPath = toStdout ? std::string() : rs::PartialStatePath(o.outFile);
     rs::FrameState resumed;
     int firstFrame = o.startFrame;
     if (cl.resume) {
         if (toStdout) rs::Report(Severity::Abort, {}, "-c needs an output file (-O or outfile)");
-        if (!rs::LoadFrameState(partialPath, fingerprint, resumed, error))
+        if (!rs::LoadFrameState(partialPath, fingerprint.Get(), resumed, error))
             rs::Report(Severity::Abort, {}, "%s", error.c_str());
         if (resumed.frame < o.startFrame || resumed.frame >= o.startFrame + o.frames)
             rs::Report(Severity::Abort, {}, "partial state '%s' is for frame %d, outside this render",
@@ -242,7 +241,7 @@ int Run(int argc, char** argv) {
     if (!toStdout) {
         checkpoint = [&](const rs::FrameState& state, bool) {
             std::string saveError;
-            if (!rs::SaveFrameState(partialPath, fingerprint, state, saveError))
+            if (!rs::SaveFrameState(partialPath, fingerprint.Get(), state, saveError))
                 rs::Report(Severity::Warn, {}, "%s", saveError.c_str());
         };
     }

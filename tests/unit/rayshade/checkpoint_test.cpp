@@ -39,6 +39,32 @@ TEST(Fingerprint, TheDifferenceNamesTheOption) {
     EXPECT_EQ(DescribeFingerprintDifference(saved, edited), "the scene file has changed since");
 }
 
+void WriteText(const std::string& path, const char* text) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs(text, f);
+    std::fclose(f);
+}
+
+TEST(Fingerprint, TheLazyOneHashesTheFileAsRead) {
+    const std::string scene = ::testing::TempDir() + "rs_lazy_" + std::to_string(getpid()) + ".ray";
+    WriteText(scene, "sphere 1 0 0 0\n");
+    const std::vector<std::string> args{scene, "-O", "o.png"};
+    LazyRenderFingerprint unchanged(args, scene);
+    EXPECT_EQ(unchanged.Get(), RenderFingerprint(args, scene));
+
+    // Rewritten between the stamp (construction, before the scene is read) and the hash:
+    // the hash describes the new bytes, so the fingerprint must match no run's.
+    LazyRenderFingerprint stale(args, scene);
+    WriteText(scene, "sphere 2.5 0 0 0\n");  // (another size: timestamps are coarse)
+    const std::string staleFingerprint = stale.Get();
+    EXPECT_EQ(staleFingerprint, RenderFingerprint(args, scene) + "\nscene changed while rendering");
+    EXPECT_EQ(DescribeFingerprintDifference(staleFingerprint, RenderFingerprint(args, scene)),
+              "the scene file has changed since");
+    EXPECT_EQ(stale.Get(), staleFingerprint);  // computed once
+    std::remove(scene.c_str());
+}
+
 TEST(Fingerprint, LoadingAnotherRendersStateSaysWhatDiffers) {
     const std::string path = ::testing::TempDir() + "rs_fingerprint_" + std::to_string(getpid()) + ".partial";
     FrameState state;
