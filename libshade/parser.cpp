@@ -186,7 +186,7 @@ Scene Parser::Parse() {
     for (auto& child : worldChildren_) world->AddChild(std::move(child));
     scene_.world = Object::MakeAggregate(world);
     scene_.world->name = "World";
-    if (scene_.world->PrimitiveCount() == 0)
+    if (!scene_.world->HasPrimitive())
         Report(Severity::Abort, SourceLocation{}, "Nothing to be rendered");
     return std::move(scene_);
 }

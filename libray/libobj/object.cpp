@@ -164,4 +164,16 @@ long Object::PrimitiveCount() const {
     return 0;
 }
 
+bool Object::HasPrimitive() const {
+    switch (kind_) {
+        case Kind::Primitive: return true;
+        case Kind::Instance: return InstanceNode()->HasPrimitive();
+        case Kind::Aggregate:
+            for (const auto& c : AggregateNode()->Children())
+                if (c->HasPrimitive()) return true;
+            return false;
+    }
+    return false;
+}
+
 }  // namespace rs

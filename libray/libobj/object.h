@@ -105,6 +105,9 @@ class Object {
 
     // Number of primitives below this node (instances count their target's).
     long PrimitiveCount() const;
+    // Whether there is a primitive below this node (PrimitiveCount() > 0, stopping at the
+    // first: the parser asks it of every scene, whose world may hold millions).
+    bool HasPrimitive() const;
     // What the node is, for reports: the primitive's type ("Sphere"), the aggregate's
     // keyword ("grid"), or "instance".
     std::string TypeName() const;

@@ -29,6 +29,19 @@ std::shared_ptr<Object> MakeList(std::vector<std::shared_ptr<Object>> children) 
     return node;
 }
 
+// HasPrimitive agrees with PrimitiveCount() > 0 through empty lists and instances.
+TEST(ListAggregate, HasPrimitiveLooksThroughEmptyListsAndInstances) {
+    const auto empty = MakeList({});
+    EXPECT_FALSE(empty->HasPrimitive());
+    const auto nested = MakeList({MakeList({}), MakeList({MakeList({})})});
+    EXPECT_FALSE(nested->HasPrimitive());
+    EXPECT_FALSE(Object::MakeInstance(nested)->HasPrimitive());
+    const auto deep = MakeList({MakeList({}), Object::MakeInstance(MakeList({Sphere({0, 0, 0}, 1)}))});
+    EXPECT_TRUE(deep->HasPrimitive());
+    EXPECT_EQ(deep->PrimitiveCount(), 1);
+    EXPECT_TRUE(Sphere({0, 0, 0}, 1)->HasPrimitive());
+}
+
 // The list's surface-area hierarchy against a brute-force loop over the children, on clouds
 // of spheres of very different sizes and on a geometric series of nested positions (which
 // makes the heuristic cut off one item at a time, down to its depth limit).
