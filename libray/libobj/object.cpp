@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "libcommon/constants.h"
+#include "libcommon/parallel_build.h"
 
 namespace rs {
 
@@ -92,6 +93,30 @@ bool Object::IsClosed() const {
     return false;
 }
 
+void Object::PrepareChildren(double frameTime, double shutter) {
+    const std::vector<std::shared_ptr<Object>>& children = AggregateNode()->Children();
+    // Below this many, one thread prepares them faster than a loop is handed out (a
+    // primitive child costs about 40 ns: its transform, its box, the box in the parent).
+    constexpr size_t kParallelChildren = 16384;
+    constexpr size_t kChunk = 4096;
+    const auto plainPrimitive = [](const std::shared_ptr<Object>& child) {
+        return child->kind_ == Kind::Primitive && !child->PrimitiveNode()->PrepareFrameDoesWork();
+    };
+    if (children.size() < kParallelChildren || !BuildLoopInstalled() ||
+        !std::all_of(children.begin(), children.end(), plainPrimitive)) {
+        for (const auto& child : children) child->PrepareFrame(frameTime, shutter);
+        return;
+    }
+    // Each primitive node has this aggregate as its only parent (instances share only
+    // their targets), so each chunk writes only its own children's nodes.
+    const size_t chunks = (children.size() + kChunk - 1) / kChunk;
+    RunBuildLoop(static_cast<long>(chunks), [&](long chunk) {
+        const size_t end = std::min(children.size(), (static_cast<size_t>(chunk) + 1) * kChunk);
+        for (size_t i = static_cast<size_t>(chunk) * kChunk; i < end; ++i)
+            children[i]->PrepareFrame(frameTime, shutter);
+    });
+}
+
 void Object::PrepareFrame(double frameTime, double shutter) {
     if (preparedFor_ == frameTime) return;
     preparedFor_ = frameTime;
@@ -104,7 +129,7 @@ void Object::PrepareFrame(double frameTime, double shutter) {
             boundsObject_ = PrimitiveNode()->Bounds();
             break;
         case Kind::Aggregate:
-            for (const auto& child : AggregateNode()->Children()) child->PrepareFrame(frameTime, shutter);
+            PrepareChildren(frameTime, shutter);
             AggregateNode()->PrepareFrame(frameTime, shutter);
             // The aggregate's box covers only its bounded children. With an unbounded child
             // the node as a whole is unbounded, so neither its own box pre-test nor its

@@ -120,6 +120,9 @@ class Object {
     Object(Key, Kind k) : kind_(k) {}
 
   private:
+    // PrepareFrame of an aggregate node's children: large sets of primitives without frame
+    // work of their own on the build's threads, anything else one at a time.
+    void PrepareChildren(double frameTime, double shutter);
 
     // Intersect for a primitive node, with the ray already in the node's object space.
     bool IntersectPrimitive(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const {

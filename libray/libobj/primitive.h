@@ -102,6 +102,12 @@ class Primitive {
     // can rebuild their acceleration data, for every ray time in [frameTime, frameTime +
     // shutter] when the shutter is open.
     virtual void PrepareFrame(double /*frameTime*/, double /*shutter*/) {}
+    // Whether PrepareFrame does anything (builds, may report). Primitives that do are
+    // prepared one at a time on the preparing thread, so their own builds run on the
+    // build's threads and their reports keep the scene's order; the others may be prepared
+    // concurrently (Object::PrepareFrame), so their Bounds() and IsBounded() must then
+    // only read the primitive.
+    virtual bool PrepareFrameDoesWork() const { return false; }
 };
 
 }  // namespace rs

@@ -55,6 +55,7 @@ class ImplicitSurface final : public Primitive {
     // skeleton) when the motion cannot be bounded. Method polynomial,
     // whose terms cannot move, is replaced by kb89 (the same field) with the shutter open.
     void PrepareFrame(double frameTime, double shutter) override;
+    bool PrepareFrameDoesWork() const override { return true; }
 
     const std::vector<FieldTerm>& Terms() const { return whole_.Terms(); }
     ImplicitMethod Method() const { return options_.method; }
