@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "libcommon/error.h"
+#include "libcommon/parallel_build.h"
 #include "libshade/lexer.h"
 #include "libshade/preprocess.h"
 
@@ -167,6 +168,32 @@ TEST(BuiltinPreprocessor, FindsWhatNeedsCppAtEveryOffsetOfALongNumberRun) {
         // ...and without any of these the text is plain and comes back as it is.
         const std::string plain = run.substr(0, k) + " sphere " + run.substr(k) + "\n";
         EXPECT_EQ(PreprocessBuiltin(plain, "t.ray", {}), std::optional<std::string>(plain)) << k;
+    }
+}
+
+TEST(BuiltinPreprocessor, FindsWhatNeedsCppAcrossTheSpansOfALargeText) {
+    // Texts of 4 MiB and more are looked at in spans of 1 MiB on the build's threads (here
+    // handed out backwards): a character or a predefined word that needs cpp is found
+    // wherever it falls, also across a span's edge, and a plain text stays plain.
+    const std::string numbers = "-0.992188 1 -1.5 0.25\n3 -4.125 7 8.5 ";
+    std::string big;
+    while (big.size() < (size_t{5} << 20)) big += numbers;
+    big += '\n';
+    const ParallelLoop backwards = [](long count, const std::function<void(long)>& body) {
+        for (long i = count - 1; i >= 0; --i) body(i);
+    };
+    const ParallelBuildScope scope(&backwards);
+    EXPECT_TRUE(PreprocessBuiltin(big, "t.ray", {}) == std::optional<std::string>(big));  // (no 5 MB diff)
+    for (const std::string needsCpp : {"\\", "unix"}) {
+        for (const size_t edge : {size_t{1} << 20, size_t{3} << 20, big.size() - 6}) {
+            for (size_t back = 0; back <= 4; ++back) {
+                std::string text = big;
+                // " unix " over the numbers: a word of its own.
+                text.replace(edge - back - 1, needsCpp.size() + 2, " " + needsCpp + " ");
+                EXPECT_FALSE(PreprocessBuiltin(text, "t.ray", {}).has_value())
+                    << needsCpp << " at " << edge << " - " << back;
+            }
+        }
     }
 }
 
