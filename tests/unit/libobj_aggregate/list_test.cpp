@@ -1,10 +1,13 @@
 #include "libobj/list.h"
 
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include <gtest/gtest.h>
 
 #include "libcommon/constants.h"
+#include "libcommon/parallel_build.h"
 #include "libcommon/random.h"
 #include "libcommon/stats.h"
 #include "libobj/object.h"
@@ -40,6 +43,45 @@ TEST(ListAggregate, HasPrimitiveLooksThroughEmptyListsAndInstances) {
     EXPECT_TRUE(deep->HasPrimitive());
     EXPECT_EQ(deep->PrimitiveCount(), 1);
     EXPECT_TRUE(Sphere({0, 0, 0}, 1)->HasPrimitive());
+}
+
+// A list of enough primitive children has them prepared in chunks on the build's threads
+// (here two real ones): every child's box in the list, moved by its own transform, and the
+// list's box are those of a serial preparation.
+TEST(ListAggregate, ChildrenPreparedConcurrentlyGetTheirOwnBoxes) {
+    const auto makeChildren = [] {
+        std::vector<std::shared_ptr<Object>> children;
+        for (int i = 0; i < 40000; ++i) {
+            auto child = Sphere({0.001 * i, std::sin(i), 0}, 0.01 + 0.001 * (i % 7));
+            child->parentFromObject.Append(Transform::Translate({0, 0, 0.5 * (i % 3)}));
+            children.push_back(std::move(child));
+        }
+        return children;
+    };
+    const auto serialChildren = makeChildren();
+    const auto serial = MakeList(serialChildren);
+    const ParallelLoop twoThreads = [](long count, const std::function<void(long)>& body) {
+        std::atomic<long> next{0};
+        const auto work = [&] {
+            for (long i; (i = next.fetch_add(1)) < count;) body(i);
+        };
+        std::thread helper(work);
+        work();
+        helper.join();
+    };
+    const auto children = makeChildren();
+    std::shared_ptr<Object> list;
+    {
+        const ParallelBuildScope scope(&twoThreads);
+        list = MakeList(children);
+    }
+    for (size_t i = 0; i < children.size(); ++i) {
+        ASSERT_EQ(children[i]->BoundsInParent().lo, serialChildren[i]->BoundsInParent().lo) << i;
+        ASSERT_EQ(children[i]->BoundsInParent().hi, serialChildren[i]->BoundsInParent().hi) << i;
+    }
+    EXPECT_EQ(list->BoundsInParent().lo, serial->BoundsInParent().lo);
+    EXPECT_EQ(list->BoundsInParent().hi, serial->BoundsInParent().hi);
+    EXPECT_NEAR(children[4]->BoundsInParent().lo.z, 0.5 - 0.014, 1e-12);  // its transform applied
 }
 
 // The list's surface-area hierarchy against a brute-force loop over the children, on clouds
