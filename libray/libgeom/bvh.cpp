@@ -114,8 +114,7 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
         };
         splice(splice, 0);
     }
-    wide_.reserve(nodes_.size() / 2 + 1);
-    BuildWide(0);
+    BuildWideTree();
     const Bounds3& root = nodes_[0].box;
     // A root of zero area leaves every term 0 (see ExpectedCost).
     if (const double rootArea = HalfArea(root); rootArea > 0) expectedCost_ /= rootArea;
@@ -124,7 +123,59 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
                        std::fabs(FloatAbove(root.hi.y)), std::fabs(FloatAbove(root.hi.z))});
 }
 
-int BoundingVolumeHierarchy::BuildWide(int node) {
+int BoundingVolumeHierarchy::SubtreeEnd(int node) const {
+    while (nodes_[node].count == 0) node = nodes_[node].right;
+    return node + 1;
+}
+
+void BoundingVolumeHierarchy::BuildWideTree() {
+    const int nodeCount = static_cast<int>(nodes_.size());
+    const int deferBelow = nodeCount >= kParallelWideNodes ? nodeCount / kWideTasks : 0;
+    WidePart top;
+    std::vector<int> deferred;
+    BuildWide(0, top, deferBelow, &deferred);
+    std::vector<WidePart> parts(deferred.size());
+    RunBuildLoop(static_cast<long>(parts.size()), [&](long p) {
+        parts[p].nodes.reserve(static_cast<size_t>(SubtreeEnd(deferred[p]) - deferred[p]) / 2 + 1);
+        BuildWide(deferred[p], parts[p], 0, nullptr);
+    });
+    // Splice in preorder: a top node, then each lane's subtree in lane order.
+    wide_.clear();
+    wide_.reserve(nodes_.size() / 2 + 1);
+    expectedCost_ = top.cost;
+    for (const WidePart& part : parts) expectedCost_ += part.cost;
+    const auto append = [&](const WidePart& part) {
+        const int offset = static_cast<int>(wide_.size());
+        for (WideNode w : part.nodes) {
+            for (int k = 0; k < 4; ++k) {
+                if (w.child[k] == kUnusedLane) w.child[k] = 0;
+                else if (w.count[k] == 0) w.child[k] += offset;
+            }
+            wide_.push_back(w);
+        }
+    };
+    const auto splice = [&](const auto& self, int t) -> void {
+        const int index = static_cast<int>(wide_.size());
+        wide_.push_back(top.nodes[t]);
+        for (int k = 0; k < 4; ++k) {
+            const int child = top.nodes[t].child[k];
+            if (top.nodes[t].count[k] > 0) continue;
+            if (child == kUnusedLane) {
+                wide_[index].child[k] = 0;
+            } else if (child <= kDeferredLane) {
+                wide_[index].child[k] = static_cast<int>(wide_.size());
+                append(parts[kDeferredLane - child]);
+            } else {
+                wide_[index].child[k] = static_cast<int>(wide_.size());
+                self(self, child);
+            }
+        }
+    };
+    splice(splice, 0);
+}
+
+int BoundingVolumeHierarchy::BuildWide(int node, WidePart& out, int deferBelow,
+                                       std::vector<int>* deferred) const {
     int lanes[4];
     int laneCount = 0;
     if (nodes_[node].count > 0) {
@@ -150,11 +201,11 @@ int BoundingVolumeHierarchy::BuildWide(int node) {
         lanes[widest] = split + 1;
         lanes[laneCount++] = nodes_[split].right;
     }
-    const int index = static_cast<int>(wide_.size());
-    wide_.emplace_back();
-    expectedCost_ += HalfArea(nodes_[node].box);
+    const int index = static_cast<int>(out.nodes.size());
+    out.nodes.emplace_back();
+    out.cost += HalfArea(nodes_[node].box);
     for (int k = 0; k < 4; ++k) {
-        int child = 0, count = 0;
+        int child = kUnusedLane, count = 0;
         Bounds3 box;  // empty for unused lanes
         if (k < laneCount) {
             const Node& lane = nodes_[lanes[k]];
@@ -162,12 +213,15 @@ int BoundingVolumeHierarchy::BuildWide(int node) {
             if (lane.count > 0) {
                 child = lane.first;
                 count = lane.count;
-                expectedCost_ += HalfArea(lane.box) * count;
+                out.cost += HalfArea(lane.box) * count;
+            } else if (deferBelow > 0 && SubtreeEnd(lanes[k]) - lanes[k] <= deferBelow) {
+                child = kDeferredLane - static_cast<int>(deferred->size());
+                deferred->push_back(lanes[k]);
             } else {
-                child = BuildWide(lanes[k]);  // may move wide_: index, not a reference
+                child = BuildWide(lanes[k], out, deferBelow, deferred);  // may move out.nodes
             }
         }
-        WideNode& w = wide_[index];
+        WideNode& w = out.nodes[index];
         w.child[k] = child;
         w.count[k] = count;
         for (int a = 0; a < 3; ++a) {

@@ -242,11 +242,30 @@ class BoundingVolumeHierarchy {
                             const BuildInput& input, const Bounds3& box,
                             const Bounds3& centroids, int& axis);
 
-    // Appends the wide node whose lanes are binary node `node`'s descendants two levels
-    // down at most (the larger-area interior lane split first, until four), recursively;
-    // returns its index. Adds the node's and its leaf lanes' terms, unscaled, to
-    // expectedCost_. Wide depth <= binary depth < 64.
-    int BuildWide(int node);
+    // Wide nodes built apart (a part of the wide tree, or its top): indices local to
+    // `nodes`; a lane's child is, while apart, kUnusedLane for an unused lane and
+    // kDeferredLane - p for a lane left to deferred part p (see BuildWide).
+    struct WidePart {
+        std::vector<WideNode> nodes;
+        double cost = 0;  // the parts' terms of expectedCost_, unscaled
+    };
+    static constexpr int kUnusedLane = -1, kDeferredLane = -2;
+    // Appends to `out` the wide node whose lanes are binary node `node`'s descendants two
+    // levels down at most (the larger-area interior lane split first, until four),
+    // recursively, and returns its index in out. Adds the node's and its leaf lanes' terms,
+    // unscaled, to out.cost. An interior lane whose binary subtree has at most `deferBelow`
+    // nodes is not built but appended to `deferred` (when given). Wide depth <= binary
+    // depth < 64.
+    int BuildWide(int node, WidePart& out, int deferBelow, std::vector<int>* deferred) const;
+    // One past the last node of binary node `node`'s subtree (preorder: its rightmost leaf).
+    int SubtreeEnd(int node) const;
+    // Builds wide_ and expectedCost_ from nodes_: on a large tree the top first, then the
+    // subtrees below it as tasks (RunBuildLoop), spliced in the preorder one recursive build
+    // gives (the tree does not depend on the thread count).
+    void BuildWideTree();
+    // Below this many binary nodes the wide tree is built as one task; above it, subtrees
+    // of at most a kWideTasks-th of the nodes are tasks.
+    static constexpr int kParallelWideNodes = 8192, kWideTasks = 64;
 
     std::vector<Node> nodes_;  // the binary tree (VisitContaining, and the source of wide_)
     std::vector<WideNode> wide_;

@@ -78,7 +78,8 @@ class BvhTest : public ::testing::TestWithParam<Split> {};
 
 TEST_P(BvhTest, BothTraversalsVisitEveryItemMeetingTheSegmentOnce) {
     Rng rng(11);
-    for (int count : {1, 2, 3, 5, 17, 64, 200}) {
+    // (20000 items: a wide tree built as a top and spliced parts, bvh.h kParallelWideNodes.)
+    for (int count : {1, 2, 3, 5, 17, 64, 200, 20000}) {
         BoundingVolumeHierarchy bvh;
         const std::vector<Bounds3> boxes = RandomBoxes(rng, count);
         bvh.Build(boxes, GetParam());
@@ -101,7 +102,7 @@ TEST_P(BvhTest, BothTraversalsVisitEveryItemMeetingTheSegmentOnce) {
 
 TEST_P(BvhTest, ShrinkingTraversalsFindTheNearestHit) {
     Rng rng(12);
-    for (int count : {1, 4, 33, 150}) {
+    for (int count : {1, 4, 33, 150, 20000}) {
         BoundingVolumeHierarchy bvh;
         const std::vector<Bounds3> boxes = RandomBoxes(rng, count);
         bvh.Build(boxes, GetParam());
