@@ -65,21 +65,42 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     emptyRun_.clear();
     hierarchy_ = ChildHierarchy{};
     bounds_ = Bounds3{};
-    for (const auto& child : children_) {
-        if (child->IsBounded()) {
-            bounded_.push_back(child.get());
-            bounds_.Extend(child->BoundsInParent());
-        } else {
-            unbounded_.push_back(child.get());
+    // The bounded children in order with their boxes padded by kEpsilon: the registered
+    // boxes (a hit on a voxel face stays registered on both sides despite round-off in the
+    // DDA, and flat boxes, e.g. of polygons, get a non-zero extent) and the boxes the walk
+    // tests, so a hit a rounding error outside a flat child's box is never rejected. In
+    // chunks of children on the build's threads (a pass over every child node: 6 ms of
+    // tree's two-thread setup on one thread): each chunk counts its bounded children and
+    // unites their boxes, then writes them from its offset; unions are exact in any order.
+    const size_t childChunks = (children_.size() + kChunk - 1) / kChunk;
+    std::vector<size_t> chunkBounded(childChunks + 1, 0);
+    std::vector<Bounds3> chunkBounds(childChunks);
+    RunBuildLoop(static_cast<long>(childChunks), [&](long chunk) {
+        const size_t end = std::min(children_.size(), (chunk + 1) * kChunk);
+        for (size_t i = chunk * kChunk; i < end; ++i) {
+            if (!children_[i]->IsBounded()) continue;
+            ++chunkBounded[chunk + 1];
+            chunkBounds[chunk].Extend(children_[i]->BoundsInParent());
         }
+    });
+    for (size_t c = 0; c < childChunks; ++c) {
+        chunkBounded[c + 1] += chunkBounded[c];
+        bounds_.Extend(chunkBounds[c]);
     }
+    bounded_.resize(chunkBounded[childChunks]);
+    childBoxes_.resize(bounded_.size());
+    RunBuildLoop(static_cast<long>(childChunks), [&](long chunk) {
+        const size_t end = std::min(children_.size(), (chunk + 1) * kChunk);
+        for (size_t i = chunk * kChunk, k = chunkBounded[chunk]; i < end; ++i) {
+            if (!children_[i]->IsBounded()) continue;
+            bounded_[k] = children_[i].get();
+            childBoxes_[k++] = children_[i]->BoundsInParent().Padded(kEpsilon);
+        }
+    });
+    if (bounded_.size() < children_.size())
+        for (const auto& child : children_)
+            if (!child->IsBounded()) unbounded_.push_back(child.get());
     if (bounded_.empty()) return;
-    // The children's boxes padded by kEpsilon: the registered boxes (a hit on a voxel face
-    // stays registered on both sides despite round-off in the DDA, and flat boxes, e.g. of
-    // polygons, get a non-zero extent) and the boxes the walk tests, so a hit a rounding
-    // error outside a flat child's box is never rejected.
-    childBoxes_.reserve(bounded_.size());
-    for (const Object* child : bounded_) childBoxes_.push_back(child->BoundsInParent().Padded(kEpsilon));
     gridBox_ = bounds_.Padded(kEpsilon);
     const Vec3 extent = gridBox_.Extent();
     voxelSize_ = {extent.x / n_[0], extent.y / n_[1], extent.z / n_[2]};
