@@ -1,5 +1,6 @@
 #include "rayshade/worker_pool.h"
 
+#include <cstdlib>
 #include <exception>
 
 #include "rayshade/renderer.h"
@@ -19,11 +20,30 @@ WorkerPool::~WorkerPool() {
     for (std::thread& t : helpers_) t.join();
 }
 
+// glibc gives each helper a heap of its own (an arena, at most 64 MiB) and grows it a page
+// at a time, one mprotect call per page, each taking the process's memory-map lock that
+// every page fault of the other threads waits for: tetra's parallel parse made 6,400 such
+// calls on its helper. Two allocations below the mmap threshold (rayshade's main sets it to
+// 32 MiB) grow the heap to 60 MiB at once; freed, they stay in the heap (the trim threshold
+// is above them), so later allocations reuse the span without system calls (tetra: 17
+// calls; its whole render at -t 2, 0.187 s against 0.197 s, median of 12 interleaved
+// runs). The span is only reserved: its pages take memory when first written, as before.
+void WorkerPool::ReserveThreadHeap() {
+#if defined(__GLIBC__)
+    constexpr size_t kBlock = size_t{30} << 20;
+    void* volatile first = std::malloc(kBlock);  // (volatile: kept, not elided)
+    void* volatile second = std::malloc(kBlock);
+    std::free(second);
+    std::free(first);
+#endif
+}
+
 void WorkerPool::Work() {
     for (long i; !(stoppable_ && StopRequested()) && (i = next_.fetch_add(1)) < count_;) (*body_)(i);
 }
 
 void WorkerPool::HelperLoop() {
+    ReserveThreadHeap();
     unsigned long seen = 0;
     while (true) {
         {

@@ -31,6 +31,7 @@ class WorkerPool {
   private:
     void Work();          // takes indices of the current loop until none is left
     void HelperLoop();    // a helper thread: waits for loops and works on them
+    static void ReserveThreadHeap();  // grows a helper's malloc heap in one step
 
     std::vector<std::thread> helpers_;
     std::mutex mutex_;
