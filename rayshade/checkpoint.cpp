@@ -134,8 +134,10 @@ std::string DescribeFingerprintDifference(const std::string& saved, const std::s
     auto option = [](const std::string& line) { return line.substr(0, line.find(' ')); };
     const std::string lost = only(was, now), added = only(now, was);
     if (lost.empty() && added.empty()) return {};
-    // Another hash, or the line of a scene that changed while the saved render ran.
-    if (option(lost) == "scene" && (added.empty() || option(added) == "scene"))
+    // Another hash, or the line of a scene that changed while a render read it (on either
+    // side: the saved render's, or this one's when it changed during parsing).
+    const bool lostScene = option(lost) == "scene", addedScene = option(added) == "scene";
+    if ((lostScene && (added.empty() || addedScene)) || (addedScene && lost.empty()))
         return "the scene file has changed since";
     if (!lost.empty() && !added.empty() && option(lost) == option(added))
         return "it was saved with " + lost + ", not " + added;

@@ -62,6 +62,8 @@ TEST(Fingerprint, TheLazyOneHashesTheFileAsRead) {
     EXPECT_EQ(DescribeFingerprintDifference(staleFingerprint, RenderFingerprint(args, scene)),
               "the scene file has changed since");
     EXPECT_EQ(stale.Get(), staleFingerprint);  // computed once
+    EXPECT_EQ(DescribeFingerprintDifference(RenderFingerprint(args, scene), staleFingerprint),
+              "the scene file has changed since");  // this run's scene changed
     std::remove(scene.c_str());
 }
 
