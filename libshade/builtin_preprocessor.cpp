@@ -282,11 +282,9 @@ bool IsPlainText(const std::string& text) {
     const size_t n = text.size();
     constexpr size_t kSpan = size_t{1} << 20;
     if (n < 4 * kSpan || !BuildLoopInstalled()) return IsPlainSpan(p, n, 0, n);
-    const size_t spans = (n + kSpan - 1) / kSpan;
-    std::vector<char> plain(spans, 0);
-    RunBuildLoop(static_cast<long>(spans), [&](long k) {
-        const size_t from = static_cast<size_t>(k) * kSpan;
-        plain[static_cast<size_t>(k)] = IsPlainSpan(p, n, from, std::min(n, from + kSpan));
+    std::vector<char> plain((n + kSpan - 1) / kSpan, 0);
+    RunBuildLoopInChunks(n, kSpan, [&](size_t from, size_t to) {
+        plain[from / kSpan] = IsPlainSpan(p, n, from, to);
     });
     return std::all_of(plain.begin(), plain.end(), [](char c) { return c != 0; });
 }

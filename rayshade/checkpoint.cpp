@@ -105,7 +105,7 @@ LazyRenderFingerprint::LazyRenderFingerprint(std::vector<std::string> args, std:
 const std::string& LazyRenderFingerprint::Get() {
     if (fingerprint_.empty()) {
         fingerprint_ = RenderFingerprint(args_, inputFile_);
-        if (!(StampSceneFile(inputFile_) == readStamp_)) fingerprint_ += "\nscene changed while rendering";
+        if (StampSceneFile(inputFile_) != readStamp_) fingerprint_ += "\nscene changed while rendering";
     }
     return fingerprint_;
 }

@@ -5,6 +5,7 @@
 // whether or how the calls overlap: each index's work writes only its own outputs.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 
 namespace rs {
@@ -32,6 +33,12 @@ class ParallelBuildScope {
 // thread that runs it, so RunBuildLoop calls nested in body run serially (the loop need not
 // be re-entrant).
 void RunBuildLoop(long count, const std::function<void(long)>& body);
+
+// RunBuildLoop over the ranges [begin, end) that cut [0, count) into runs of `chunk` items
+// (the last one shorter; range k begins at k * chunk): for passes over many items, each too
+// cheap to hand out alone.
+void RunBuildLoopInChunks(std::size_t count, std::size_t chunk,
+                          const std::function<void(std::size_t begin, std::size_t end)>& body);
 
 // Whether RunBuildLoop calls made on this thread now may run concurrently (a loop is
 // installed): for work that pays only when they do.

@@ -133,7 +133,15 @@ void BoundingVolumeHierarchy::BuildWideTree() {
     const int deferBelow = nodeCount >= kParallelWideNodes ? nodeCount / kWideTasks : 0;
     WidePart top;
     std::vector<int> deferred;
+    if (deferBelow == 0) top.nodes.reserve(nodes_.size() / 2 + 1);  // the whole tree
     BuildWide(0, top, deferBelow, &deferred);
+    expectedCost_ = top.cost;
+    if (deferred.empty()) {  // the top is the tree, already in preorder
+        for (WideNode& w : top.nodes)
+            for (int& child : w.child) child = child == kUnusedLane ? 0 : child;
+        wide_ = std::move(top.nodes);
+        return;
+    }
     std::vector<WidePart> parts(deferred.size());
     RunBuildLoop(static_cast<long>(parts.size()), [&](long p) {
         parts[p].nodes.reserve(static_cast<size_t>(SubtreeEnd(deferred[p]) - deferred[p]) / 2 + 1);
@@ -142,7 +150,6 @@ void BoundingVolumeHierarchy::BuildWideTree() {
     // Splice in preorder: a top node, then each lane's subtree in lane order.
     wide_.clear();
     wide_.reserve(nodes_.size() / 2 + 1);
-    expectedCost_ = top.cost;
     for (const WidePart& part : parts) expectedCost_ += part.cost;
     const auto append = [&](const WidePart& part) {
         const int offset = static_cast<int>(wide_.size());

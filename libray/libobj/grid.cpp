@@ -75,9 +75,9 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     const size_t childChunks = (children_.size() + kChunk - 1) / kChunk;
     std::vector<size_t> chunkBounded(childChunks + 1, 0);
     std::vector<Bounds3> chunkBounds(childChunks);
-    RunBuildLoop(static_cast<long>(childChunks), [&](long chunk) {
-        const size_t end = std::min(children_.size(), (chunk + 1) * kChunk);
-        for (size_t i = chunk * kChunk; i < end; ++i) {
+    RunBuildLoopInChunks(children_.size(), kChunk, [&](size_t begin, size_t end) {
+        const size_t chunk = begin / kChunk;
+        for (size_t i = begin; i < end; ++i) {
             if (!children_[i]->IsBounded()) continue;
             ++chunkBounded[chunk + 1];
             chunkBounds[chunk].Extend(children_[i]->BoundsInParent());
@@ -89,9 +89,8 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     }
     bounded_.resize(chunkBounded[childChunks]);
     childBoxes_.resize(bounded_.size());
-    RunBuildLoop(static_cast<long>(childChunks), [&](long chunk) {
-        const size_t end = std::min(children_.size(), (chunk + 1) * kChunk);
-        for (size_t i = chunk * kChunk, k = chunkBounded[chunk]; i < end; ++i) {
+    RunBuildLoopInChunks(children_.size(), kChunk, [&](size_t begin, size_t end) {
+        for (size_t i = begin, k = chunkBounded[begin / kChunk]; i < end; ++i) {
             if (!children_[i]->IsBounded()) continue;
             bounded_[k] = children_[i].get();
             childBoxes_[k++] = children_[i]->BoundsInParent().Padded(kEpsilon);
@@ -110,11 +109,10 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     // entry is stored or visited. In chunks of children on the build's threads (each chunk
     // writes its own children's ranges and its own count; RunBuildLoop returns after all).
     std::vector<int> ranges(6 * bounded_.size());
-    const size_t chunks = (bounded_.size() + kChunk - 1) / kChunk;
-    std::vector<uint64_t> chunkEntries(chunks, 0);
-    RunBuildLoop(static_cast<long>(chunks), [&](long chunk) {
-        const size_t end = std::min(bounded_.size(), (chunk + 1) * kChunk);
-        for (size_t i = chunk * kChunk; i < end; ++i) {
+    std::vector<uint64_t> chunkEntries((bounded_.size() + kChunk - 1) / kChunk, 0);
+    RunBuildLoopInChunks(bounded_.size(), kChunk, [&](size_t begin, size_t end) {
+        const size_t chunk = begin / kChunk;
+        for (size_t i = begin; i < end; ++i) {
             const Bounds3& box = childBoxes_[i];
             int* r = &ranges[6 * i];
             if (box.IsEmpty()) {

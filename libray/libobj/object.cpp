@@ -109,11 +109,8 @@ void Object::PrepareChildren(double frameTime, double shutter) {
     }
     // Each primitive node has this aggregate as its only parent (instances share only
     // their targets), so each chunk writes only its own children's nodes.
-    const size_t chunks = (children.size() + kChunk - 1) / kChunk;
-    RunBuildLoop(static_cast<long>(chunks), [&](long chunk) {
-        const size_t end = std::min(children.size(), (static_cast<size_t>(chunk) + 1) * kChunk);
-        for (size_t i = static_cast<size_t>(chunk) * kChunk; i < end; ++i)
-            children[i]->PrepareFrame(frameTime, shutter);
+    RunBuildLoopInChunks(children.size(), kChunk, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) children[i]->PrepareFrame(frameTime, shutter);
     });
 }
 
