@@ -231,9 +231,10 @@ int BoundingVolumeHierarchy::BuildWide(int node, WidePart& out, int deferBelow,
         WideNode& w = out.nodes[index];
         w.child[k] = child;
         w.count[k] = count;
+        constexpr float kInfinity = std::numeric_limits<float>::infinity();
         for (int a = 0; a < 3; ++a) {
-            w.lo[a][k] = box.IsEmpty() ? std::numeric_limits<float>::infinity() : FloatBelow(box.lo[a]);
-            w.hi[a][k] = box.IsEmpty() ? -std::numeric_limits<float>::infinity() : FloatAbove(box.hi[a]);
+            w.bounds[0][a][k] = box.IsEmpty() ? kInfinity : FloatBelow(box.lo[a]);
+            w.bounds[1][a][k] = box.IsEmpty() ? -kInfinity : FloatAbove(box.hi[a]);
         }
     }
     return index;
@@ -251,10 +252,11 @@ bool BoundingVolumeHierarchy::FloatRay::Set(const Ray& ray, double scale) {
         // Clip handles; otherwise 1/d must stay in float's normal range (and away from its
         // top, so products keep the relative error bound).
         if (d != 0 && !(std::fabs(inv) >= kMinInverse && std::fabs(inv) <= kMax)) return false;
-        invDir[a] = static_cast<float>(inv);
-        negative[a] = std::signbit(inv);
-        nearOrigin[a] = static_cast<float>(negative[a] ? o - delta : o + delta);
-        farOrigin[a] = static_cast<float>(negative[a] ? o + delta : o - delta);
+        const bool negative = std::signbit(inv);
+        nearSide[a] = negative ? 1 : 0;
+        invDir[a] = Float4{} + static_cast<float>(inv);
+        nearOrigin[a] = Float4{} + static_cast<float>(negative ? o - delta : o + delta);
+        farOrigin[a] = Float4{} + static_cast<float>(negative ? o + delta : o - delta);
     }
     return true;
 }

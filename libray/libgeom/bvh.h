@@ -66,35 +66,55 @@ class BoundingVolumeHierarchy {
         // The stack never holds more than 3 entries per level plus 4 (see BuildWide).
         StackEntry stack[kStackSize];
         int top = 0;
-        stack[top++] = {0, 0, -std::numeric_limits<float>::infinity()};
+        // The lane being visited (as WideNode's child, count): the root first.
+        int ref = 0, count = 0;
         bool found = false;
-        while (top > 0) {
-            const StackEntry entry = stack[--top];
-            if (entry.tNear > tMaxF) continue;  // the segment shrank past its box
-            if (entry.count > 0) {
-                for (int i = 0; i < entry.count; ++i) {
-                    if (!visit(items_[entry.ref + i])) continue;
+        for (;;) {
+            if (count > 0) {
+                for (int i = 0; i < count; ++i) {
+                    if (!visit(items_[ref + i])) continue;
                     if (kStopAtFirstHit) return true;
                     found = true;
                     tMaxF = FloatAbove(tMax);
                 }
-                continue;
+            } else {
+                const WideNode& node = wide_[ref];
+                float tNear[4];
+                const int hitMask = node.Clip(fr, tMinF, tMaxF, tNear);
+                if (hitMask != 0 && (hitMask & (hitMask - 1)) == 0) {
+                    // One lane met (the common case deep in the tree): it would be pushed
+                    // and popped next, so it is visited without the trip.
+                    const int k = __builtin_ctz(hitMask);
+                    if (tNear[k] <= tMaxF) {
+                        ref = node.child[k];
+                        count = node.count[k];
+                        continue;
+                    }
+                } else {
+                    // Push the lanes met, farthest first, so the nearest is popped next.
+                    const int first = top;
+                    for (int mask = hitMask; mask != 0; mask &= mask - 1) {
+                        const int k = __builtin_ctz(mask);
+                        StackEntry e{node.child[k], node.count[k], tNear[k]};
+                        int j = top++;
+                        if (!kStopAtFirstHit)
+                            for (; j > first && stack[j - 1].tNear < e.tNear; --j)
+                                stack[j] = stack[j - 1];
+                        stack[j] = e;
+                    }
+                }
             }
-            const WideNode& node = wide_[entry.ref];
-            float tNear[4];
-            // Push the lanes met, farthest first, so the nearest is popped next.
-            const int first = top;
-            for (int hitMask = node.Clip(fr, tMinF, tMaxF, tNear); hitMask != 0;
-                 hitMask &= hitMask - 1) {
-                const int k = __builtin_ctz(hitMask);
-                StackEntry e{node.child[k], node.count[k], tNear[k]};
-                int j = top++;
-                if (!kStopAtFirstHit)
-                    for (; j > first && stack[j - 1].tNear < e.tNear; --j) stack[j] = stack[j - 1];
-                stack[j] = e;
+            // The next stacked lane whose box the (possibly shrunken) segment still reaches.
+            for (;;) {
+                if (top == 0) return found;
+                const StackEntry& entry = stack[--top];
+                if (entry.tNear <= tMaxF) {
+                    ref = entry.ref;
+                    count = entry.count;
+                    break;
+                }
             }
         }
-        return found;
     }
 
     // As Traverse (children by entry parameter, a node skipped once its entry lies beyond
@@ -167,14 +187,19 @@ class BoundingVolumeHierarchy {
     }
 
   private:
+    // Four floats operated on at once (GCC/Clang vector extension: SSE on x86-64).
+    typedef float Float4 __attribute__((vector_size(16)));
     // A ray in single precision for WideNode::Clip. Each axis keeps two origins, shifted
     // along the axis by delta = 2^-21 (|o| + scale) in opposite directions: the near one
     // moved forward (so near-slab parameters only decrease), the far one backward. delta
     // exceeds the rounding of the origin to float and of the slab subtraction (scale bounds
-    // the boxes' coordinates), so (plane − origin) errs only outward.
+    // the boxes' coordinates), so (plane − origin) errs only outward. Every figure is
+    // broadcast to the four lanes once per ray, not once per node, and nearSide[a] names
+    // the side of axis a's slab a ray enters through (WideNode::bounds[side][a]: 0 low, 1
+    // high), so Clip picks its planes by index rather than by a branch on the sign.
     struct FloatRay {
-        float nearOrigin[3], farOrigin[3], invDir[3];
-        bool negative[3];
+        Float4 nearOrigin[3], farOrigin[3], invDir[3];
+        int nearSide[3];
         // False when some figure leaves single precision's normal range (the caller then
         // visits every item).
         bool Set(const Ray& ray, double scale);
@@ -182,11 +207,9 @@ class BoundingVolumeHierarchy {
     // Four children's boxes, rounded outward to float, structure of arrays so one slab
     // test covers the four lanes. child/count: count > 0 for a leaf lane, items_[child,
     // child + count); 0 for an interior lane, wide_[child]; an unused lane has an empty box
-    // (lo = +inf, hi = -inf), which Clip never admits.
-    // Four floats operated on at once (GCC/Clang vector extension: SSE on x86-64).
-    typedef float Float4 __attribute__((vector_size(16)));
+    // (low = +inf, high = -inf), which Clip never admits.
     struct WideNode {
-        Float4 lo[3], hi[3];
+        Float4 bounds[2][3];  // bounds[0][a]: the lanes' lows on axis a; bounds[1][a]: highs
         int child[4], count[4];
         // Bit k set when lane k's box meets the segment (tMin, tMax), conservatively; its
         // entry parameter, lowered by the same margin, in tNear[k].
@@ -294,8 +317,8 @@ inline int BoundingVolumeHierarchy::WideNode::Clip(const FloatRay& ray, float tM
     // underflow) keeps every box the exact segment meets.
     Float4 near = Float4{} + tMin, far = Float4{} + tMax;
     for (int a = 0; a < 3; ++a) {
-        const Float4& nearPlane = ray.negative[a] ? hi[a] : lo[a];
-        const Float4& farPlane = ray.negative[a] ? lo[a] : hi[a];
+        const Float4& nearPlane = bounds[ray.nearSide[a]][a];
+        const Float4& farPlane = bounds[1 - ray.nearSide[a]][a];
         const Float4 t0 = (nearPlane - ray.nearOrigin[a]) * ray.invDir[a];
         const Float4 t1 = (farPlane - ray.farOrigin[a]) * ray.invDir[a];
         near = t0 > near ? t0 : near;
