@@ -233,8 +233,8 @@ int BoundingVolumeHierarchy::BuildWide(int node, WidePart& out, int deferBelow,
         w.count[k] = count;
         constexpr float kInfinity = std::numeric_limits<float>::infinity();
         for (int a = 0; a < 3; ++a) {
-            w.bounds[0][a][k] = box.IsEmpty() ? kInfinity : FloatBelow(box.lo[a]);
-            w.bounds[1][a][k] = box.IsEmpty() ? -kInfinity : FloatAbove(box.hi[a]);
+            w.planes[a][k] = box.IsEmpty() ? kInfinity : FloatBelow(box.lo[a]);
+            w.planes[3 + a][k] = box.IsEmpty() ? -kInfinity : FloatAbove(box.hi[a]);
         }
     }
     return index;
@@ -253,7 +253,8 @@ bool BoundingVolumeHierarchy::FloatRay::Set(const Ray& ray, double scale) {
         // top, so products keep the relative error bound).
         if (d != 0 && !(std::fabs(inv) >= kMinInverse && std::fabs(inv) <= kMax)) return false;
         const bool negative = std::signbit(inv);
-        nearSide[a] = negative ? 1 : 0;
+        nearPlane[a] = negative ? 3 + a : a;
+        farPlane[a] = negative ? a : 3 + a;
         invDir[a] = Float4{} + static_cast<float>(inv);
         nearOrigin[a] = Float4{} + static_cast<float>(negative ? o - delta : o + delta);
         farOrigin[a] = Float4{} + static_cast<float>(negative ? o + delta : o - delta);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -63,6 +64,9 @@ class BoundingVolumeHierarchy {
         }
         const float tMinF = FloatBelow(tMin);
         float tMaxF = FloatAbove(tMax);
+        // The segment's ends in every lane, for the node tests.
+        const Float4 tMinLanes = Float4{} + tMinF;
+        Float4 tMaxLanes = Float4{} + tMaxF;
         // The stack never holds more than 3 entries per level plus 4 (see BuildWide).
         StackEntry stack[kStackSize];
         int top = 0;
@@ -76,11 +80,12 @@ class BoundingVolumeHierarchy {
                     if (kStopAtFirstHit) return true;
                     found = true;
                     tMaxF = FloatAbove(tMax);
+                    tMaxLanes = Float4{} + tMaxF;
                 }
             } else {
                 const WideNode& node = wide_[ref];
                 float tNear[4];
-                const int hitMask = node.Clip(fr, tMinF, tMaxF, tNear);
+                const int hitMask = node.Clip(fr, tMinLanes, tMaxLanes, tNear);
                 if (hitMask != 0 && (hitMask & (hitMask - 1)) == 0) {
                     // One lane met (the common case deep in the tree): it would be pushed
                     // and popped next, so it is visited without the trip.
@@ -194,12 +199,13 @@ class BoundingVolumeHierarchy {
     // moved forward (so near-slab parameters only decrease), the far one backward. delta
     // exceeds the rounding of the origin to float and of the slab subtraction (scale bounds
     // the boxes' coordinates), so (plane − origin) errs only outward. Every figure is
-    // broadcast to the four lanes once per ray, not once per node, and nearSide[a] names
-    // the side of axis a's slab a ray enters through (WideNode::bounds[side][a]: 0 low, 1
-    // high), so Clip picks its planes by index rather than by a branch on the sign.
+    // broadcast to the four lanes once per ray, not once per node, and nearPlane[a] and
+    // farPlane[a] index the WideNode::planes the ray enters and leaves axis a's slabs
+    // through (a for the lows, 3 + a for the highs), so Clip picks its planes by index
+    // rather than by a branch on the sign.
     struct FloatRay {
         Float4 nearOrigin[3], farOrigin[3], invDir[3];
-        int nearSide[3];
+        std::ptrdiff_t nearPlane[3], farPlane[3];
         // False when some figure leaves single precision's normal range (the caller then
         // visits every item).
         bool Set(const Ray& ray, double scale);
@@ -209,17 +215,22 @@ class BoundingVolumeHierarchy {
     // child + count); 0 for an interior lane, wide_[child]; an unused lane has an empty box
     // (low = +inf, high = -inf), which Clip never admits.
     struct WideNode {
-        Float4 bounds[2][3];  // bounds[0][a]: the lanes' lows on axis a; bounds[1][a]: highs
+        Float4 planes[6];  // planes[a]: the lanes' lows on axis a; planes[3 + a]: their highs
         int child[4], count[4];
         // Bit k set when lane k's box meets the segment (tMin, tMax), conservatively; its
         // entry parameter, lowered by the same margin, in tNear[k].
-        int Clip(const FloatRay& ray, float tMin, float tMax, float tNear[4]) const;
+        int Clip(const FloatRay& ray, Float4 tMin, Float4 tMax, float tNear[4]) const;
     };
     struct StackEntry {
         int ref, count;  // as WideNode's child, count
         float tNear;
     };
     static constexpr int kStackSize = 3 * 64 + 4;
+    // |x| in every lane (the sign bits cleared; a NaN stays a NaN).
+    static Float4 Abs(Float4 x) {
+        typedef int Int4 __attribute__((vector_size(16)));
+        return (Float4)((Int4)x & 0x7fffffff);
+    }
     // The largest float <= x, the smallest float >= x.
     static float FloatBelow(double x);
     static float FloatAbove(double x);
@@ -307,7 +318,7 @@ inline float BoundingVolumeHierarchy::FloatAbove(double x) {
     return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
-inline int BoundingVolumeHierarchy::WideNode::Clip(const FloatRay& ray, float tMin, float tMax,
+inline int BoundingVolumeHierarchy::WideNode::Clip(const FloatRay& ray, Float4 tMin, Float4 tMax,
                                                    float tNear[4]) const {
     // Per lane: the largest near-slab and smallest far-slab parameter, written as
     // comparisons so a NaN (0·inf: an origin on the plane of an axis-parallel ray's slab)
@@ -315,19 +326,17 @@ inline int BoundingVolumeHierarchy::WideNode::Clip(const FloatRay& ray, float tM
     // the exact one for the shifted origins (one rounding of 1/d, one of the product), so
     // lowering the entry and raising the exit by 2^-21 of their size (plus 2^-126 against
     // underflow) keeps every box the exact segment meets.
-    Float4 near = Float4{} + tMin, far = Float4{} + tMax;
+    Float4 near = tMin, far = tMax;
     for (int a = 0; a < 3; ++a) {
-        const Float4& nearPlane = bounds[ray.nearSide[a]][a];
-        const Float4& farPlane = bounds[1 - ray.nearSide[a]][a];
-        const Float4 t0 = (nearPlane - ray.nearOrigin[a]) * ray.invDir[a];
-        const Float4 t1 = (farPlane - ray.farOrigin[a]) * ray.invDir[a];
+        const Float4 t0 = (planes[ray.nearPlane[a]] - ray.nearOrigin[a]) * ray.invDir[a];
+        const Float4 t1 = (planes[ray.farPlane[a]] - ray.farOrigin[a]) * ray.invDir[a];
         near = t0 > near ? t0 : near;
         far = t1 < far ? t1 : far;
     }
-    constexpr float kRelative = 0x1p-21f, kAbsolute = 0x1p-126f;
-    const Float4 nearSize = near > -near ? near : -near, farSize = far > -far ? far : -far;
-    const Float4 lower = near - (nearSize * kRelative + kAbsolute);
-    const Float4 upper = far + (farSize * kRelative + kAbsolute);
+    constexpr Float4 kRelative{0x1p-21f, 0x1p-21f, 0x1p-21f, 0x1p-21f};
+    constexpr Float4 kAbsolute{0x1p-126f, 0x1p-126f, 0x1p-126f, 0x1p-126f};
+    const Float4 lower = near - (Abs(near) * kRelative + kAbsolute);
+    const Float4 upper = far + (Abs(far) * kRelative + kAbsolute);
     // An infinite entry (or exit at -inf) gives NaN here: an empty lane, or an
     // axis-parallel ray outside a slab, both misses.
     const auto met = lower <= upper;
