@@ -118,9 +118,9 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
     const Bounds3& root = nodes_[0].box;
     // A root of zero area leaves every term 0 (see ExpectedCost).
     if (const double rootArea = HalfArea(root); rootArea > 0) expectedCost_ /= rootArea;
-    scale_ = std::max({std::fabs(FloatBelow(root.lo.x)), std::fabs(FloatBelow(root.lo.y)),
-                       std::fabs(FloatBelow(root.lo.z)), std::fabs(FloatAbove(root.hi.x)),
-                       std::fabs(FloatAbove(root.hi.y)), std::fabs(FloatAbove(root.hi.z))});
+    scale_ = std::max({std::fabs(FloatAtOrBelow(root.lo.x)), std::fabs(FloatAtOrBelow(root.lo.y)),
+                       std::fabs(FloatAtOrBelow(root.lo.z)), std::fabs(FloatAtOrAbove(root.hi.x)),
+                       std::fabs(FloatAtOrAbove(root.hi.y)), std::fabs(FloatAtOrAbove(root.hi.z))});
 }
 
 int BoundingVolumeHierarchy::SubtreeEnd(int node) const {
@@ -233,8 +233,8 @@ int BoundingVolumeHierarchy::BuildWide(int node, WidePart& out, int deferBelow,
         w.count[k] = count;
         constexpr float kInfinity = std::numeric_limits<float>::infinity();
         for (int a = 0; a < 3; ++a) {
-            w.planes[a][k] = box.IsEmpty() ? kInfinity : FloatBelow(box.lo[a]);
-            w.planes[3 + a][k] = box.IsEmpty() ? -kInfinity : FloatAbove(box.hi[a]);
+            w.planes[a][k] = box.IsEmpty() ? kInfinity : FloatAtOrBelow(box.lo[a]);
+            w.planes[3 + a][k] = box.IsEmpty() ? -kInfinity : FloatAtOrAbove(box.hi[a]);
         }
     }
     return index;
@@ -255,9 +255,9 @@ bool BoundingVolumeHierarchy::FloatRay::Set(const Ray& ray, double scale) {
         const bool negative = std::signbit(inv);
         nearPlane[a] = negative ? 3 + a : a;
         farPlane[a] = negative ? a : 3 + a;
-        invDir[a] = Float4{} + static_cast<float>(inv);
-        nearOrigin[a] = Float4{} + static_cast<float>(negative ? o - delta : o + delta);
-        farOrigin[a] = Float4{} + static_cast<float>(negative ? o + delta : o - delta);
+        invDir[a] = Splat(static_cast<float>(inv));
+        nearOrigin[a] = Splat(static_cast<float>(negative ? o - delta : o + delta));
+        farOrigin[a] = Splat(static_cast<float>(negative ? o + delta : o - delta));
     }
     return true;
 }

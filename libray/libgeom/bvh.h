@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "libcommon/bounds.h"
+#include "libcommon/float_rounding.h"
 
 namespace rs {
 
@@ -62,11 +63,11 @@ class BoundingVolumeHierarchy {
             }
             return found;
         }
-        const float tMinF = FloatBelow(tMin);
-        float tMaxF = FloatAbove(tMax);
+        const float tMinF = FloatAtOrBelow(tMin);
+        float tMaxF = FloatAtOrAbove(tMax);
         // The segment's ends in every lane, for the node tests.
-        const Float4 tMinLanes = Float4{} + tMinF;
-        Float4 tMaxLanes = Float4{} + tMaxF;
+        const Float4 tMinLanes = Splat(tMinF);
+        Float4 tMaxLanes = Splat(tMaxF);
         // The stack never holds more than 3 entries per level plus 4 (see BuildWide).
         StackEntry stack[kStackSize];
         int top = 0;
@@ -79,8 +80,8 @@ class BoundingVolumeHierarchy {
                     if (!visit(items_[ref + i])) continue;
                     if (kStopAtFirstHit) return true;
                     found = true;
-                    tMaxF = FloatAbove(tMax);
-                    tMaxLanes = Float4{} + tMaxF;
+                    tMaxF = FloatAtOrAbove(tMax);
+                    tMaxLanes = Splat(tMaxF);
                 }
             } else {
                 const WideNode& node = wide_[ref];
@@ -226,14 +227,13 @@ class BoundingVolumeHierarchy {
         float tNear;
     };
     static constexpr int kStackSize = 3 * 64 + 4;
+    // x in every lane.
+    static Float4 Splat(float x) { return Float4{x, x, x, x}; }
     // |x| in every lane (the sign bits cleared; a NaN stays a NaN).
     static Float4 Abs(Float4 x) {
         typedef int Int4 __attribute__((vector_size(16)));
         return (Float4)((Int4)x & 0x7fffffff);
     }
-    // The largest float <= x, the smallest float >= x.
-    static float FloatBelow(double x);
-    static float FloatAbove(double x);
 
     static constexpr int kLeafSize = 2;
     static constexpr int kMaxSahLeaf = 4;
@@ -307,16 +307,6 @@ class BoundingVolumeHierarchy {
     double expectedCost_ = 0;
     std::vector<int> items_;
 };
-
-inline float BoundingVolumeHierarchy::FloatBelow(double x) {
-    const float f = static_cast<float>(x);
-    return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-
-inline float BoundingVolumeHierarchy::FloatAbove(double x) {
-    const float f = static_cast<float>(x);
-    return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
 
 inline int BoundingVolumeHierarchy::WideNode::Clip(const FloatRay& ray, Float4 tMin, Float4 tMax,
                                                    float tNear[4]) const {

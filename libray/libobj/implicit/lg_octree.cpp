@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "libcommon/error.h"
+#include "libcommon/float_rounding.h"
 #include "libcommon/stats.h"
 #include "libobj/implicit/lg_octree_detail.h"
 
@@ -262,8 +263,7 @@ bool LGOctree::Degraded() const {
 
 float UpperFloat(double x) {
     if (!(x <= std::numeric_limits<float>::max())) return std::numeric_limits<float>::infinity();
-    const float f = static_cast<float>(x);  // the nearest float, possibly below x
-    return f < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+    return FloatAtOrAbove(x);
 }
 
 // False when some other term's smallest value over the box exceeds the own term's largest
