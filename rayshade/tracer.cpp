@@ -162,6 +162,15 @@ bool HasTransparentSurface(const Object& root) {
     return false;
 }
 
+// Whether the normals point along the ray direction `dir` (all in the primitive's space), so
+// that shading flips them to face the ray: for interpolated normals the geometric normal
+// decides when the two disagree (see Evaluate).
+bool FacesAway(const Vec3& dir, const SurfaceNormals& normals) {
+    const double dn = Dot(dir, normals.shading);
+    const double dg = Dot(dir, normals.geometric);
+    return (normals.smooth && ((dn > 0) != (dg > 0))) ? dg > 0 : dn > 0;
+}
+
 }  // namespace
 
 Tracer::Tracer(const Scene& scene)
@@ -207,6 +216,20 @@ const Surface& Tracer::UntexturedSurface(const HitRecord& hit) const {
     for (int i = 0; i < hit.pathLength; ++i)
         if (hit.path[i]->surface) return *hit.path[i]->surface;
     return defaultSurface_;
+}
+
+bool Tracer::Enters(const Ray& ray, const HitRecord& hit) const {
+    if (hit.enterOverride >= 0) return hit.enterOverride == 1;
+    // The ray mapped down the path as Evaluate maps it.
+    Ray rayPrimitive = ray;
+    for (int i = hit.pathLength - 1; i >= 0; --i) {
+        const TransformList& list = hit.path[i]->parentFromObject;
+        if (list.IsIdentity()) continue;
+        rayPrimitive = list.IsAnimated() ? list.At(ray.time).InverseRay(rayPrimitive)
+                                         : list.Static().InverseRay(rayPrimitive);
+    }
+    const Vec3 pPrimitive = rayPrimitive.At(hit.t());
+    return !FacesAway(rayPrimitive.dir, hit.primitive->Normal(pPrimitive, hit.prim));
 }
 
 Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool textured,
@@ -260,9 +283,7 @@ Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool
     // bevels of `stripe` and every other bump). A dot product with the ray has the same sign
     // in every space along the path (normals map with the inverse transpose), so the test
     // is made in the primitive's space.
-    const double dn = Dot(rayPrimitive.dir, normals.shading);
-    const double dg = Dot(rayPrimitive.dir, normals.geometric);
-    const bool flip = (normals.smooth && ((dn > 0) != (dg > 0))) ? dg > 0 : dn > 0;
+    const bool flip = FacesAway(rayPrimitive.dir, normals);
     if (flip) {
         n = -n;
         ng = -ng;
@@ -468,17 +489,19 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
         if (previousEntering)
             c *= std::pow(previousExtinct, hit.t() - previousT - kEpsilon);
         // What the occluder passes on: its surface with textures applied and whether the ray
-        // enters it. A CSG hit carries the enter flag, and with no textures on its path the
-        // surface is the untextured one, so Evaluate (normals, transforms) is not needed.
+        // enters it. With no textures on its path the surface is the untextured one, and
+        // only the side of the hit is needed (Enters; a CSG hit carries it).
         const bool textured = std::any_of(hit.path, hit.path + hit.pathLength,
                                           [](const Object* o) { return !o->Textures().empty(); });
         const Surface* surface = &UntexturedSurface(hit);
-        bool entering = hit.enterOverride == 1;
+        bool entering;
         std::optional<ShadingPoint> sp;
-        if (textured || hit.enterOverride < 0) {
+        if (textured) {
             sp = Evaluate(ray, hit, true, sample);
             surface = &sp->surface;
             entering = sp->entering;
+        } else {
+            entering = Enters(ray, hit);
         }
         c *= surface->body * surface->transp;
         if (!c.AnyAbove(kEpsilon)) {
