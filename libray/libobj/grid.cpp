@@ -293,6 +293,9 @@ bool GridAggregate::Walk(const Ray& ray, double tMin, double& tMax, Test&& test)
     const uint32_t stamp = mailbox.NewStamp();
     uint32_t* const marks = mailbox.marks.data() + firstSlot_;  // stays put, see NewStamp
     uint64_t boxTests = 0;
+    const uint32_t* const cellItemsData = cellItems_.data();
+    const Bounds3* const childBoxesData = childBoxes_.data();
+    const Object* const* const boundedData = bounded_.data();
     for (;;) {
         const int c = CellIndex(cell[0], cell[1], cell[2]);
         if (const int run = emptyRun_[c]; run > 1) {
@@ -326,16 +329,19 @@ bool GridAggregate::Walk(const Ray& ray, double tMin, double& tMax, Test&& test)
             if (left) break;
             continue;
         }
-        for (uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
-            const uint32_t id = cellItems_[k];
+        // The cell's items as a pointer range: the mark stores below could alias the
+        // vectors' own fields, which would otherwise be reloaded at every item.
+        const uint32_t* const itemsEnd = cellItemsData + cellStart_[c + 1];
+        for (const uint32_t* item = cellItemsData + cellStart_[c]; item < itemsEnd; ++item) {
+            const uint32_t id = *item;
             uint32_t& mark = marks[id];
             if (mark == stamp) continue;
             mark = stamp;
             // A child whose box the remaining segment misses cannot be hit later either
             // (the segment only shrinks), so marking it tested is exact.
             ++boxTests;
-            if (!childBoxes_[id].MeetsSegment(ray, invDir, tMin, tMax)) continue;
-            if (!test(bounded_[id])) continue;
+            if (!childBoxesData[id].MeetsSegment(ray, invDir, tMin, tMax)) continue;
+            if (!test(boundedData[id])) continue;
             found = true;
             if (kStopAtFirstHit) {
                 Count(kBoundsTests, boxTests);
