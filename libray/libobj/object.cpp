@@ -57,13 +57,13 @@ bool Object::IntersectGeneral(const Ray& rayParent, double tMin, double& tMax,
         if (found && hit.pathLength < HitRecord::kMaxPath) hit.path[hit.pathLength++] = this;
         return found;
     };
-    Ray storage;
+    RayStorage storage;
     return inObjectSpace(ObjectRay(rayParent, storage));
 }
 
 bool Object::OccludedGeneral(const Ray& rayParent, double tMin, double tMax,
                              const Object** blocker) const {
-    Ray storage;
+    RayStorage storage;
     const Ray& ray = ObjectRay(rayParent, storage);
     if (kind_ == Kind::Primitive) return OccludedPrimitive(ray, tMin, tMax, blocker);
     // Nothing is named unless a primitive below names itself and this node passes the name

@@ -157,14 +157,20 @@ class Object {
         return parentFromObject.IsIdentity() &&
                !(Is(Kind::Aggregate) && !AggregateNode()->HitsAreChildHits());
     }
+    // Room for a mapped ray, not written unless a transform maps one into it (most nodes
+    // have none, and a Ray's defaults are nine stores per search through the node).
+    union RayStorage {
+        RayStorage() {}
+        Ray ray;
+    };
     // The ray in this node's object space: rayParent itself without a transform, else
     // mapped into `storage`.
-    const Ray& ObjectRay(const Ray& rayParent, Ray& storage) const {
+    const Ray& ObjectRay(const Ray& rayParent, RayStorage& storage) const {
         if (parentFromObject.IsIdentity()) return rayParent;
-        storage = parentFromObject.IsAnimated()
-                      ? parentFromObject.At(rayParent.time).InverseRay(rayParent)
-                      : parentFromObject.Static().InverseRay(rayParent);
-        return storage;
+        storage.ray = parentFromObject.IsAnimated()
+                          ? parentFromObject.At(rayParent.time).InverseRay(rayParent)
+                          : parentFromObject.Static().InverseRay(rayParent);
+        return storage.ray;
     }
 
     static const CounterId kBoundsTests;
