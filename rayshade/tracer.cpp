@@ -9,6 +9,7 @@
 
 #include "libcommon/constants.h"
 #include "libcommon/stats.h"
+#include "libobj/hit_classify.h"
 #include "libobj/object.h"
 #include "libtext/noise.h"
 #include "libtext/texture.h"
@@ -221,13 +222,7 @@ const Surface& Tracer::UntexturedSurface(const HitRecord& hit) const {
 bool Tracer::Enters(const Ray& ray, const HitRecord& hit) const {
     if (hit.enterOverride >= 0) return hit.enterOverride == 1;
     // The ray mapped down the path as Evaluate maps it.
-    Ray rayPrimitive = ray;
-    for (int i = hit.pathLength - 1; i >= 0; --i) {
-        const TransformList& list = hit.path[i]->parentFromObject;
-        if (list.IsIdentity()) continue;
-        rayPrimitive = list.IsAnimated() ? list.At(ray.time).InverseRay(rayPrimitive)
-                                         : list.Static().InverseRay(rayPrimitive);
-    }
+    const Ray rayPrimitive = RayInPrimitiveSpace(ray, hit);
     const Vec3 pPrimitive = rayPrimitive.At(hit.t());
     return !FacesAway(rayPrimitive.dir, hit.primitive->Normal(pPrimitive, hit.prim));
 }

@@ -16,4 +16,9 @@ namespace rs {
 // hit, with no other surface of that solid between the origin and the hit.
 bool HitEnters(const Ray& ray, const HitRecord& hit);
 
+// `ray` (as for HitEnters, in the outermost recorded node's parent space) mapped down the
+// path to the hit primitive's object space. Every mapping keeps t (directions are not
+// renormalised), so r.At(hit.t()) is the hit point there.
+Ray RayInPrimitiveSpace(const Ray& ray, const HitRecord& hit);
+
 }  // namespace rs
