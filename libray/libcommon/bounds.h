@@ -27,6 +27,10 @@ struct Bounds3 {
         return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z &&
                p.z <= hi.z;
     }
+    // Whether p lies inside the box and on none of its faces.
+    bool ContainsStrictly(const Vec3& p) const {
+        return p.x > lo.x && p.x < hi.x && p.y > lo.y && p.y < hi.y && p.z > lo.z && p.z < hi.z;
+    }
     void Extend(const Vec3& p) { lo = Min(lo, p); hi = Max(hi, p); }
     void Extend(const Bounds3& b) { lo = Min(lo, b.lo); hi = Max(hi, b.hi); }
     Bounds3 Padded(double d) const {

@@ -88,14 +88,19 @@ class Object {
     const Bounds3& BoundsInParent() const { return boundsInParent_; }
     bool IsBounded() const { return bounded_; }
     bool IsClosed() const;
-    // The box pre-test IntersectGeneral applies to an aggregate or instance node: false when
-    // the ray (in the node's object space) misses the node's box over (tMin, tMax). Always
-    // true for unbounded nodes.
+    // The box pre-test IntersectGeneral applies to an aggregate or instance node, a cull:
+    // false only when the ray (in the node's object space) misses the node's box over
+    // (tMin, tMax). Always true for unbounded nodes, and, without clipping, for a ray that
+    // starts strictly inside the box: the secondary and shadow rays leaving the scene's
+    // surfaces mostly do, and for them the clip (three divisions) would almost always
+    // admit. (A ray that starts inside but whose segment lies beyond the box, as a
+    // transparent shadow's later passes may, is admitted and searched in vain.)
     bool BoxAdmits(const Ray& rayObject, double tMin, double tMax) const {
         // bounded_ is false for aggregates holding unbounded children, see PrepareFrame.
         if (!bounded_) return true;
         Count(kBoundsTests);
-        return boundsObject_.ClipRay(rayObject, tMin, tMax);
+        return boundsObject_.ContainsStrictly(rayObject.origin) ||
+               boundsObject_.ClipRay(rayObject, tMin, tMax);
     }
 
     // Prepares this node and everything below it for a frame: lets primitives rebuild,
