@@ -172,6 +172,16 @@ bool FacesAway(const Vec3& dir, const SurfaceNormals& normals) {
     return (normals.smooth && ((dn > 0) != (dg > 0))) ? dg > 0 : dn > 0;
 }
 
+// Evaluate's `entering` alone (for an occluder without textures, whose surface is the
+// untextured one): the ray mapped to the primitive as Evaluate maps it, and the primitive's
+// normals there, nothing else.
+bool EntersAsShaded(const Ray& ray, const HitRecord& hit) {
+    if (hit.enterOverride >= 0) return hit.enterOverride == 1;
+    const Ray rayPrimitive = RayInPrimitiveSpace(ray, hit);
+    const Vec3 pPrimitive = rayPrimitive.At(hit.t());
+    return !FacesAway(rayPrimitive.dir, hit.primitive->Normal(pPrimitive, hit.prim));
+}
+
 }  // namespace
 
 Tracer::Tracer(const Scene& scene)
@@ -217,14 +227,6 @@ const Surface& Tracer::UntexturedSurface(const HitRecord& hit) const {
     for (int i = 0; i < hit.pathLength; ++i)
         if (hit.path[i]->surface) return *hit.path[i]->surface;
     return defaultSurface_;
-}
-
-bool Tracer::Enters(const Ray& ray, const HitRecord& hit) const {
-    if (hit.enterOverride >= 0) return hit.enterOverride == 1;
-    // The ray mapped down the path as Evaluate maps it.
-    const Ray rayPrimitive = RayInPrimitiveSpace(ray, hit);
-    const Vec3 pPrimitive = rayPrimitive.At(hit.t());
-    return !FacesAway(rayPrimitive.dir, hit.primitive->Normal(pPrimitive, hit.prim));
 }
 
 Tracer::ShadingPoint Tracer::Evaluate(const Ray& ray, const HitRecord& hit, bool textured,
@@ -485,7 +487,7 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
             c *= std::pow(previousExtinct, hit.t() - previousT - kEpsilon);
         // What the occluder passes on: its surface with textures applied and whether the ray
         // enters it. With no textures on its path the surface is the untextured one, and
-        // only the side of the hit is needed (Enters; a CSG hit carries it).
+        // only the side of the hit is needed (EntersAsShaded; a CSG hit carries it).
         const bool textured = std::any_of(hit.path, hit.path + hit.pathLength,
                                           [](const Object* o) { return !o->Textures().empty(); });
         const Surface* surface = &UntexturedSurface(hit);
@@ -496,7 +498,7 @@ Color Tracer::LightThroughShadows(const Vec3& p, double time, const Color& light
             surface = &sp->surface;
             entering = sp->entering;
         } else {
-            entering = Enters(ray, hit);
+            entering = EntersAsShaded(ray, hit);
         }
         c *= surface->body * surface->transp;
         if (!c.AnyAbove(kEpsilon)) {

@@ -36,9 +36,6 @@ class Tracer {
     // Evaluates the hit's surface (with textures when `textured`) and normals.
     ShadingPoint Evaluate(const Ray& ray, const HitRecord& hit, bool textured,
                           SampleState& sample) const;
-    // Evaluate's `entering` alone (for an occluder without textures, whose surface is the
-    // untextured one): the ray mapped to the primitive and its normals there, nothing else.
-    bool Enters(const Ray& ray, const HitRecord& hit) const;
 
   private:
     struct Medium {

@@ -137,8 +137,6 @@ void BoundingVolumeHierarchy::BuildWideTree() {
     BuildWide(0, top, deferBelow, &deferred);
     expectedCost_ = top.cost;
     if (deferred.empty()) {  // the top is the tree, already in preorder
-        for (WideNode& w : top.nodes)
-            for (int& child : w.child) child = child == kUnusedLane ? 0 : child;
         wide_ = std::move(top.nodes);
         return;
     }
@@ -154,10 +152,8 @@ void BoundingVolumeHierarchy::BuildWideTree() {
     const auto append = [&](const WidePart& part) {
         const int offset = static_cast<int>(wide_.size());
         for (WideNode w : part.nodes) {
-            for (int k = 0; k < 4; ++k) {
-                if (w.child[k] == kUnusedLane) w.child[k] = 0;
-                else if (w.count[k] == 0) w.child[k] += offset;
-            }
+            for (int k = 0; k < 4; ++k)
+                if (w.count[k] == 0 && w.child[k] != 0) w.child[k] += offset;  // interior
             wide_.push_back(w);
         }
     };
@@ -166,10 +162,8 @@ void BoundingVolumeHierarchy::BuildWideTree() {
         wide_.push_back(top.nodes[t]);
         for (int k = 0; k < 4; ++k) {
             const int child = top.nodes[t].child[k];
-            if (top.nodes[t].count[k] > 0) continue;
-            if (child == kUnusedLane) {
-                wide_[index].child[k] = 0;
-            } else if (child <= kDeferredLane) {
+            if (top.nodes[t].count[k] > 0 || child == 0) continue;  // a leaf or unused lane
+            if (child <= kDeferredLane) {
                 wide_[index].child[k] = static_cast<int>(wide_.size());
                 append(parts[kDeferredLane - child]);
             } else {
@@ -212,7 +206,7 @@ int BoundingVolumeHierarchy::BuildWide(int node, WidePart& out, int deferBelow,
     out.nodes.emplace_back();
     out.cost += HalfArea(nodes_[node].box);
     for (int k = 0; k < 4; ++k) {
-        int child = kUnusedLane, count = 0;
+        int child = 0, count = 0;
         Bounds3 box;  // empty for unused lanes
         if (k < laneCount) {
             const Node& lane = nodes_[lanes[k]];

@@ -277,13 +277,14 @@ class BoundingVolumeHierarchy {
                             const Bounds3& centroids, int& axis);
 
     // Wide nodes built apart (a part of the wide tree, or its top): indices local to
-    // `nodes`; a lane's child is, while apart, kUnusedLane for an unused lane and
-    // kDeferredLane - p for a lane left to deferred part p (see BuildWide).
+    // `nodes`. An interior lane's child is never 0 (index 0 is the part's root, no lane's
+    // child), so 0 marks an unused lane, as in the finished tree; kDeferredLane - p marks a
+    // lane left to deferred part p (see BuildWide).
     struct WidePart {
         std::vector<WideNode> nodes;
         double cost = 0;  // the parts' terms of expectedCost_, unscaled
     };
-    static constexpr int kUnusedLane = -1, kDeferredLane = -2;
+    static constexpr int kDeferredLane = -1;
     // Appends to `out` the wide node whose lanes are binary node `node`'s descendants two
     // levels down at most (the larger-area interior lane split first, until four),
     // recursively, and returns its index in out. Adds the node's and its leaf lanes' terms,
