@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "libcommon/parallel_build.h"
 
@@ -49,24 +50,22 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
     items_.resize(boxes.size());
     for (int i = 0; i < count; ++i) items_[i] = i;
     if (boxes.empty()) return;
-    // The centres in an array of their own: every level of the build reads them. Filled
-    // here, in order (pre-sizing them for parallel fills would write every array twice).
-    BuildInput input{boxes, {}, {}, {}, {}};
-    input.centres.reserve(boxes.size());
-    for (const Bounds3& b : boxes) input.centres.push_back(b.Center());
+    BuildInput input{boxes, {}};
+    std::unique_ptr<SahBox[]> sahBoxes;
     if (split == Split::SurfaceArea) {
-        const auto toFloat4 = [](const Vec3& v) {
-            return Float4{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), 0};
-        };
-        input.binLo.reserve(boxes.size());
-        input.binHi.reserve(boxes.size());
-        input.binCentre.reserve(boxes.size());
-        for (size_t i = 0; i < boxes.size(); ++i) {
-            input.binLo.push_back(toFloat4(boxes[i].lo));
-            input.binHi.push_back(toFloat4(boxes[i].hi));
-            input.binCentre.push_back(toFloat4(input.centres[i]));
-        }
+        // Each written once (the array is not initialised first), in chunks on the build's
+        // threads: on a quarter of a million items a serial fill was 7 ms of tree's
+        // two-thread setup with the second thread idle.
+        sahBoxes = std::make_unique_for_overwrite<SahBox[]>(boxes.size());
+        RunBuildLoopInChunks(boxes.size(), kPassChunk, [&](size_t begin, size_t end) {
+            for (size_t i = begin; i < end; ++i) sahBoxes[i] = SahBoxOf(boxes[i]);
+        });
+    } else {
+        // The centres in an array of their own: every level of a median build reads them.
+        input.centres.reserve(boxes.size());
+        for (const Bounds3& b : boxes) input.centres.push_back(b.Center());
     }
+    const BuildItems buildItems{items_, sahBoxes.get()};
     // The top levels, leaving the subtrees below them as tasks. Synchronisation: every task
     // writes only its own outputs (its range items_[begin, end), disjoint from the others',
     // and its own vector of nodes) and reads what was written before the loop started;
@@ -75,7 +74,7 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
     std::vector<Subtree> deferred;
     const bool parallel = count >= kParallelBuildItems;
     top.reserve(parallel ? 4 * kBuildTasks : 2 * boxes.size());
-    BuildNode(top, items_, 0, count, input, split, 0, count / kBuildTasks,
+    BuildNode(top, buildItems, 0, count, input, split, 0, count / kBuildTasks,
               parallel ? &deferred : nullptr);
     if (deferred.empty()) {
         nodes_ = std::move(top);
@@ -91,7 +90,7 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
             const Subtree& task = deferred[order[i]];
             std::vector<Node>& part = parts[order[i]];
             part.reserve(2 * static_cast<size_t>(task.end - task.begin));
-            BuildNode(part, items_, task.begin, task.end, input, split, task.depth, 0, nullptr);
+            BuildNode(part, buildItems, task.begin, task.end, input, split, task.depth, 0, nullptr);
         });
         // Splice in preorder, so the nodes lie exactly where one recursive build puts them.
         std::vector<int> taskAt(top.size(), -1);
@@ -256,9 +255,14 @@ bool BoundingVolumeHierarchy::FloatRay::Set(const Ray& ray, double scale) {
     return true;
 }
 
-int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, int end,
-                                          const BuildInput& input, const Bounds3& box,
-                                          const Bounds3& centroids, int& axis) {
+BoundingVolumeHierarchy::SahBox BoundingVolumeHierarchy::SahBoxOf(const Bounds3& box) {
+    return {Float4{FloatAtOrBelow(box.lo.x), FloatAtOrBelow(box.lo.y), FloatAtOrBelow(box.lo.z), 0},
+            Float4{FloatAtOrAbove(box.hi.x), FloatAtOrAbove(box.hi.y), FloatAtOrAbove(box.hi.z), 0}};
+}
+
+int BoundingVolumeHierarchy::SahPartition(BuildItems order, int begin, int end,
+                                          const Bounds3& box, const Bounds3& centroids,
+                                          int& axis) {
     constexpr int kBins = 16;
     typedef int Int4 __attribute__((vector_size(16)));
     const int count = end - begin;
@@ -275,8 +279,10 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     Float4 binsPerUnit{};
     for (int a = 0; a < 3; ++a)
         if (cExtent[a] > 0) binsPerUnit[a] = static_cast<float>(kBins / cExtent[a]);
-    const auto binsOf = [&](int item) {
-        const Float4 rel = (input.binCentre[item] - cLo) * binsPerUnit;
+    const SahBox* boxes = order.sahBoxes;
+    // The three axes' bins of the item at position i.
+    const auto binsOf = [&](int i) {
+        const Float4 rel = ((boxes[i].lo + boxes[i].hi) * 0.5f - cLo) * binsPerUnit;
         const Int4 b = __builtin_convertvector(rel > 0 ? rel : Float4{}, Int4);
         return b < kBins - 1 ? b : Int4{} + (kBins - 1);
     };
@@ -289,21 +295,19 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     // bins' sweeps below would make, without filling them. An axis whose two centres fall in
     // different bins offers one split, the lower bin's item against the other, of cost
     // 1 + (A_lower + A_upper) / A (the sweeps' A·N terms with N = 1, exactly), the same on
-    // every such axis; the sweeps keep the first axis of least cost, and std::partition
+    // every such axis; the sweeps keep the first axis of least cost, and the partition
     // puts the lower item first.
     static_assert(kMaxSahLeaf >= 2, "two items that are not split make a leaf");
     if (count == 2) {
-        int& first = items[begin];
-        int& second = items[begin + 1];
-        const Int4 b0 = binsOf(first), b1 = binsOf(second);
+        const Int4 b0 = binsOf(begin), b1 = binsOf(begin + 1);
         for (int a = 0; a < 3; ++a) {
             if (!(cExtent[a] > 0) || b0[a] == b1[a]) continue;
-            const double cost = 1 + (halfArea(input.binLo[first], input.binHi[first]) +
-                                     halfArea(input.binLo[second], input.binHi[second])) /
+            const double cost = 1 + (halfArea(boxes[begin].lo, boxes[begin].hi) +
+                                     halfArea(boxes[begin + 1].lo, boxes[begin + 1].hi)) /
                                         area;
             if (!(cost < bestCost)) break;
             axis = a;
-            if (b1[a] < b0[a]) std::swap(first, second);
+            if (b1[a] < b0[a]) order.Swap(begin, begin + 1);
             return begin + 1;
         }
         return kSahLeaf;
@@ -332,9 +336,8 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
         begin, end, bins,
         [&](Bins& part, int from, int to) {
             for (int i = from; i < to; ++i) {
-                const int item = items[i];
-                const Int4 b = binsOf(item);
-                for (int a = 0; a < 3; ++a) part.Add(a, b[a], input.binLo[item], input.binHi[item], 1);
+                const Int4 b = binsOf(i);
+                for (int a = 0; a < 3; ++a) part.Add(a, b[a], boxes[i].lo, boxes[i].hi, 1);
             }
         },
         [](Bins& into, const Bins& part) {
@@ -389,14 +392,18 @@ int BoundingVolumeHierarchy::SahPartition(std::vector<int>& items, int begin, in
     }
     if (bestAxis < 0) return count <= kMaxSahLeaf ? kSahLeaf : kSahMedian;
     axis = bestAxis;
-    const auto middle =
-        std::partition(items.begin() + begin, items.begin() + end,
-                       [&](int item) { return binsOf(item)[bestAxis] < bestBin; });
-    return static_cast<int>(middle - items.begin());
+    // The left part to the front, items and boxes together.
+    int i = begin, j = end - 1;
+    for (;;) {
+        while (i <= j && binsOf(i)[bestAxis] < bestBin) ++i;
+        while (i <= j && !(binsOf(j)[bestAxis] < bestBin)) --j;
+        if (i >= j) return i;
+        order.Swap(i++, j--);
+    }
 }
 
-int BoundingVolumeHierarchy::BuildNode(std::vector<Node>& nodes, std::vector<int>& items,
-                                       int begin, int end, const BuildInput& input, Split split,
+int BoundingVolumeHierarchy::BuildNode(std::vector<Node>& nodes, BuildItems order, int begin,
+                                       int end, const BuildInput& input, Split split,
                                        int depth, int deferBelow, std::vector<Subtree>* deferred) {
     const int index = static_cast<int>(nodes.size());
     nodes.emplace_back();
@@ -407,21 +414,56 @@ int BoundingVolumeHierarchy::BuildNode(std::vector<Node>& nodes, std::vector<int
     struct NodeBounds {
         Bounds3 box, centroids;
     } bounds;
-    ChunkedPass(
-        begin, end, bounds,
-        [&](NodeBounds& part, int from, int to) {
-            // In locals, which the compiler keeps in registers (`part` might alias the input).
-            Bounds3 partBox, partCentroids;
-            for (int i = from; i < to; ++i) {
-                partBox.Extend(input.boxes[items[i]]);
-                partCentroids.Extend(input.centres[items[i]]);
-            }
-            part = {partBox, partCentroids};
-        },
-        [](NodeBounds& into, const NodeBounds& part) {
-            into.box.Extend(part.box);
-            into.centroids.Extend(part.centroids);
-        });
+    const std::vector<int>& items = order.items;
+    if (order.sahBoxes == nullptr) {
+        ChunkedPass(
+            begin, end, bounds,
+            [&](NodeBounds& part, int from, int to) {
+                // In locals, which the compiler keeps in registers (`part` might alias the input).
+                Bounds3 partBox, partCentroids;
+                for (int i = from; i < to; ++i) {
+                    partBox.Extend(input.boxes[items[i]]);
+                    partCentroids.Extend(input.centres[items[i]]);
+                }
+                part = {partBox, partCentroids};
+            },
+            [](NodeBounds& into, const NodeBounds& part) {
+                into.box.Extend(part.box);
+                into.centroids.Extend(part.centroids);
+            });
+    } else {
+        // The SAH's node box: the union of its items' outward-rounded float boxes, and its
+        // centroid bounds over the centres its bins use (SahPartition's binsOf).
+        constexpr float kInf = std::numeric_limits<float>::infinity();
+        struct FloatBounds {
+            Float4 lo = Splat(kInf), hi = Splat(-kInf), centreLo = Splat(kInf), centreHi = Splat(-kInf);
+        } floatBounds;
+        const SahBox* boxes = order.sahBoxes;
+        ChunkedPass(
+            begin, end, floatBounds,
+            [&](FloatBounds& part, int from, int to) {
+                Float4 lo = part.lo, hi = part.hi, centreLo = part.centreLo, centreHi = part.centreHi;
+                for (int i = from; i < to; ++i) {
+                    const Float4 centre = (boxes[i].lo + boxes[i].hi) * 0.5f;
+                    lo = boxes[i].lo < lo ? boxes[i].lo : lo;
+                    hi = boxes[i].hi > hi ? boxes[i].hi : hi;
+                    centreLo = centre < centreLo ? centre : centreLo;
+                    centreHi = centre > centreHi ? centre : centreHi;
+                }
+                part = {lo, hi, centreLo, centreHi};
+            },
+            [](FloatBounds& into, const FloatBounds& part) {
+                into.lo = part.lo < into.lo ? part.lo : into.lo;
+                into.hi = part.hi > into.hi ? part.hi : into.hi;
+                into.centreLo = part.centreLo < into.centreLo ? part.centreLo : into.centreLo;
+                into.centreHi = part.centreHi > into.centreHi ? part.centreHi : into.centreHi;
+            });
+        const auto toVec3 = [](const Float4& v) { return Vec3{v[0], v[1], v[2]}; };
+        bounds.box.lo = toVec3(floatBounds.lo);
+        bounds.box.hi = toVec3(floatBounds.hi);
+        bounds.centroids.lo = toVec3(floatBounds.centreLo);
+        bounds.centroids.hi = toVec3(floatBounds.centreHi);
+    }
     const Bounds3& box = bounds.box;
     const Bounds3& centroids = bounds.centroids;
     nodes[index].box = box;
@@ -435,23 +477,27 @@ int BoundingVolumeHierarchy::BuildNode(std::vector<Node>& nodes, std::vector<int
     int mid = kSahMedian;
     if (split == Split::SurfaceArea && depth < kMaxSahDepth) {
         if (end - begin <= 1) return leaf();
-        mid = SahPartition(items, begin, end, input, box, centroids, axis);
+        mid = SahPartition(order, begin, end, box, centroids, axis);
         if (mid == kSahLeaf) return leaf();
     } else if (end - begin <= kLeafSize) {
         return leaf();
     }
     if (mid == kSahMedian) {
         mid = begin + (end - begin) / 2;
-        std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
-                         [&](int a, int b) {
+        std::nth_element(order.items.begin() + begin, order.items.begin() + mid,
+                         order.items.begin() + end, [&](int a, int b) {
                              // Ties broken by item, so which items go to each half
                              // does not depend on the standard library.
-                             const double ca = input.centres[a][axis], cb = input.centres[b][axis];
+                             const double ca = CentreOf(input, a, axis), cb = CentreOf(input, b, axis);
                              return ca < cb || (ca == cb && a < b);
                          });
+        // The SAH's boxes follow their items (a median split under the SAH is rare: past
+        // kMaxSahDepth, or where no split pays but the node is too large for a leaf).
+        if (order.sahBoxes != nullptr)
+            for (int i = begin; i < end; ++i) order.sahBoxes[i] = SahBoxOf(input.boxes[items[i]]);
     }
-    BuildNode(nodes, items, begin, mid, input, split, depth + 1, deferBelow, deferred);
-    const int right = BuildNode(nodes, items, mid, end, input, split, depth + 1, deferBelow, deferred);
+    BuildNode(nodes, order, begin, mid, input, split, depth + 1, deferBelow, deferred);
+    const int right = BuildNode(nodes, order, mid, end, input, split, depth + 1, deferBelow, deferred);
     nodes[index].right = right;
     nodes[index].axis = axis;
     return index;

@@ -246,34 +246,52 @@ class BoundingVolumeHierarchy {
         int axis = 0;
     };
 
-    // The items' boxes and their centres, by item; for the SAH's binning also both in single
-    // precision, (x, y, z, 0) in one vector each (the bins' boxes and the centres' bins are
-    // estimates; node boxes are computed from the doubles).
+    // The items' boxes and, for median builds, their centres, by item.
     struct BuildInput {
         const std::vector<Bounds3>& boxes;
-        std::vector<Vec3> centres;
-        std::vector<Float4> binLo, binHi, binCentre;
+        std::vector<Vec3> centres;  // empty for SAH builds
     };
-    // Builds the subtree over items[begin, end) at `depth` into `nodes` (appended in
+    // Coordinate `axis` of item's centre.
+    static double CentreOf(const BuildInput& input, int item, int axis) {
+        return input.centres.empty() ? input.boxes[item].Center()[axis] : input.centres[item][axis];
+    }
+    // The items being built over, in their current order (every node's items are a range
+    // of it): their indices and, for the SAH, each one's box in single precision rounded
+    // outward, (x, y, z, 0) in two vectors, moved with it. The SAH's passes read a node's
+    // boxes in sequence rather than through the indices, and unions of these boxes are
+    // conservative node boxes (each holds its item's double box).
+    struct SahBox {
+        Float4 lo, hi;
+    };
+    struct BuildItems {
+        std::vector<int>& items;
+        SahBox* sahBoxes;  // null for median builds
+        void Swap(int i, int j) {
+            std::swap(items[i], items[j]);
+            std::swap(sahBoxes[i], sahBoxes[j]);
+        }
+    };
+    static SahBox SahBoxOf(const Bounds3& box);
+    // Builds the subtree over order.items[begin, end) at `depth` into `nodes` (appended in
     // preorder: a node, its left subtree, its right one) and returns its root's index. With
     // `deferred`, a subtree of at most deferBelow items is not built but left there, its
     // root a placeholder node (a parallel task of Build).
     struct Subtree {
         int begin, end, depth, node;
     };
-    static int BuildNode(std::vector<Node>& nodes, std::vector<int>& items, int begin, int end,
+    static int BuildNode(std::vector<Node>& nodes, BuildItems order, int begin, int end,
                          const BuildInput& input, Split split, int depth, int deferBelow,
                          std::vector<Subtree>* deferred);
     // Below this many items the whole tree is built as one task; above it the top levels
     // are built first and the subtrees of at most items / kBuildTasks items below them as
     // separate tasks (RunBuildLoop), for any thread count, so the tree does not depend on it.
     static constexpr int kParallelBuildItems = 4096, kBuildTasks = 32;
-    // The SAH split of items[begin, end) (centroid bounds `centroids`, node box `box`): when
-    // a split pays, partitions the items, sets `axis` and returns the first of the right
-    // part; otherwise returns kSahLeaf, or kSahMedian when there are too many for a leaf.
+    // The SAH split of order's [begin, end) (centroid bounds `centroids`, node box `box`):
+    // when a split pays, partitions the items, sets `axis` and returns the first of the
+    // right part; otherwise returns kSahLeaf, or kSahMedian when there are too many for a
+    // leaf.
     static constexpr int kSahLeaf = -1, kSahMedian = -2;
-    static int SahPartition(std::vector<int>& items, int begin, int end,
-                            const BuildInput& input, const Bounds3& box,
+    static int SahPartition(BuildItems order, int begin, int end, const Bounds3& box,
                             const Bounds3& centroids, int& axis);
 
     // Wide nodes built apart (a part of the wide tree, or its top): indices local to
