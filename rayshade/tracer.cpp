@@ -4,7 +4,6 @@
 #include <atomic>
 #include <cmath>
 #include <optional>
-#include <unordered_set>
 #include <vector>
 
 #include "libcommon/constants.h"
@@ -129,40 +128,6 @@ void ApplyPathTextures(const Ray& ray, const HitRecord& hit,
     }
 }
 
-// Whether some node at or below `root` carries a surface that lets light through
-// (transp >= kEpsilon, LightThroughShadows' test). Instanced nodes are looked at once. A
-// large scene's nodes mostly share a few surfaces, so a surface seen opaque is not looked
-// at again, and the children of an aggregate are looked at in place: only those that have
-// nodes below them wait in `pending`.
-bool HasTransparentSurface(const Object& root) {
-    std::unordered_set<const Object*> seen;
-    std::vector<const Object*> pending{&root};
-    const Surface* lastOpaque = nullptr;
-    const auto transparent = [&](const Object& node) {
-        const Surface* s = node.surface.get();
-        if (!s || s == lastOpaque) return false;
-        if (s->transp >= kEpsilon) return true;
-        lastOpaque = s;
-        return false;
-    };
-    while (!pending.empty()) {
-        const Object* node = pending.back();
-        pending.pop_back();
-        if (transparent(*node)) return true;
-        if (const Aggregate* aggregate = node->aggregate()) {
-            for (const auto& child : aggregate->Children()) {
-                if (child->aggregate() || child->instanceOf())
-                    pending.push_back(child.get());
-                else if (transparent(*child))
-                    return true;
-            }
-        }
-        if (const Object* target = node->instanceOf(); target && seen.insert(target).second)
-            pending.push_back(target);
-    }
-    return false;
-}
-
 // Whether the normals point along the ray direction `dir` (all in the primitive's space), so
 // that shading flips them to face the ray: for interpolated normals the geometric normal
 // decides when the two disagree (see Evaluate).
@@ -188,7 +153,7 @@ Tracer::Tracer(const Scene& scene)
     : scene_(scene),
       options_(scene.options),
       opaqueShadows_(!options_.shadowTransparency ||
-                     (defaultSurface_.transp < kEpsilon && !HasTransparentSurface(*scene.world))),
+                     (defaultSurface_.transp < kEpsilon && !scene.world->HasTransparentSurfaceBelow())),
       serial_(gNextTracerSerial.fetch_add(1)) {
     // Entries for depths 0..maxDepth of every light, counted in size_t (maxDepth may be
     // INT_MAX for a library caller).

@@ -18,6 +18,7 @@ struct SampleState {
 
 class Tracer {
   public:
+    // For a scene whose world is prepared for the frame (Object::PrepareFrame).
     explicit Tracer(const Scene& scene);
 
     // Colour seen along an eye ray (unit direction); `hit` tells whether it hit anything

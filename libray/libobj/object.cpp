@@ -4,6 +4,7 @@
 
 #include "libcommon/constants.h"
 #include "libcommon/parallel_build.h"
+#include "libsurf/surface.h"
 
 namespace rs {
 
@@ -93,31 +94,56 @@ bool Object::IsClosed() const {
     return false;
 }
 
-void Object::PrepareChildren(double frameTime, double shutter) {
+Object::ChildrenSummary Object::PrepareChildren(double frameTime, double shutter) {
     const std::vector<std::shared_ptr<Object>>& children = AggregateNode()->Children();
     // Below this many, one thread prepares them faster than a loop is handed out (a
     // primitive child costs about 40 ns: its transform, its box, the box in the parent).
     constexpr size_t kParallelChildren = 16384;
     constexpr size_t kChunk = 4096;
-    const auto plainPrimitive = [](const std::shared_ptr<Object>& child) {
-        return child->kind_ == Kind::Primitive && !child->PrimitiveNode()->PrepareFrameDoesWork();
-    };
-    if (children.size() < kParallelChildren || !BuildLoopInstalled() ||
-        !std::all_of(children.begin(), children.end(), plainPrimitive)) {
-        for (const auto& child : children) child->PrepareFrame(frameTime, shutter);
-        return;
+    ChildrenSummary summary;
+    if (children.size() < kParallelChildren || !BuildLoopInstalled()) {
+        for (const auto& child : children) {
+            child->PrepareFrame(frameTime, shutter);
+            summary.Add(*child);
+        }
+        return summary;
     }
-    // Each primitive node has this aggregate as its only parent (instances share only
-    // their targets), so each chunk writes only its own children's nodes.
+    // A primitive node has this aggregate as its only parent (instances share only their
+    // targets), so a chunk that prepares only primitives without frame work writes only its
+    // own children's nodes. The other children of each chunk wait in `later` and are
+    // prepared after the loop, in order (they may share nodes below them). Summaries are a
+    // conjunction and a disjunction: the same in any order.
+    const size_t chunks = (children.size() + kChunk - 1) / kChunk;
+    std::vector<ChildrenSummary> chunkSummaries(chunks);
+    std::vector<std::vector<size_t>> later(chunks);
     RunBuildLoopInChunks(children.size(), kChunk, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) children[i]->PrepareFrame(frameTime, shutter);
+        const size_t chunk = begin / kChunk;
+        for (size_t i = begin; i < end; ++i) {
+            Object& child = *children[i];
+            if (child.kind_ != Kind::Primitive || child.PrimitiveNode()->PrepareFrameDoesWork()) {
+                later[chunk].push_back(i);
+                continue;
+            }
+            child.PrepareFrame(frameTime, shutter);
+            chunkSummaries[chunk].Add(child);
+        }
     });
+    for (size_t c = 0; c < chunks; ++c) {
+        summary.allBounded = summary.allBounded && chunkSummaries[c].allBounded;
+        summary.anyTransparent = summary.anyTransparent || chunkSummaries[c].anyTransparent;
+        for (size_t i : later[c]) {
+            children[i]->PrepareFrame(frameTime, shutter);
+            summary.Add(*children[i]);
+        }
+    }
+    return summary;
 }
 
 void Object::PrepareFrame(double frameTime, double shutter) {
     if (preparedFor_ == frameTime) return;
     preparedFor_ = frameTime;
     parentFromObject.PrepareAt(frameTime);
+    transparentBelow_ = surface != nullptr && surface->transp >= kEpsilon;
 
     switch (kind_) {
         case Kind::Primitive:
@@ -125,21 +151,22 @@ void Object::PrepareFrame(double frameTime, double shutter) {
             bounded_ = PrimitiveNode()->IsBounded();
             boundsObject_ = PrimitiveNode()->Bounds();
             break;
-        case Kind::Aggregate:
-            PrepareChildren(frameTime, shutter);
+        case Kind::Aggregate: {
+            const ChildrenSummary children = PrepareChildren(frameTime, shutter);
             AggregateNode()->PrepareFrame(frameTime, shutter);
             // The aggregate's box covers only its bounded children. With an unbounded child
             // the node as a whole is unbounded, so neither its own box pre-test nor its
             // parent's clips that child away (spec §6 recommends fixing the original's
             // clipping; top-level planes must never be clipped).
-            bounded_ = AggregateNode()->IsBounded() &&
-                       std::all_of(AggregateNode()->Children().begin(), AggregateNode()->Children().end(),
-                                   [](const auto& child) { return child->IsBounded(); });
+            bounded_ = AggregateNode()->IsBounded() && children.allBounded;
+            transparentBelow_ = transparentBelow_ || children.anyTransparent;
             boundsObject_ = AggregateNode()->Bounds();
             break;
+        }
         case Kind::Instance:
             InstanceNode()->PrepareFrame(frameTime, shutter);
             bounded_ = InstanceNode()->IsBounded();
+            transparentBelow_ = transparentBelow_ || InstanceNode()->transparentBelow_;
             boundsObject_ = InstanceNode()->BoundsInParent();
             break;
     }

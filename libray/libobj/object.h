@@ -107,6 +107,10 @@ class Object {
     // rebuilds aggregates, recomputes bounds. Safe to call more than once per frame on a
     // shared node (the work is done once per distinct frameTime).
     void PrepareFrame(double frameTime, double shutter);
+    // Whether this node or one below it (for an instance, below its target) has a surface
+    // of its own with transp >= kEpsilon; known once the node is prepared (PrepareFrame
+    // works it out on its pass over the nodes, so asking never walks a large scene again).
+    bool HasTransparentSurfaceBelow() const { return transparentBelow_; }
 
     // Number of primitives below this node (instances count their target's).
     long PrimitiveCount() const;
@@ -125,9 +129,18 @@ class Object {
     Object(Key, Kind k) : kind_(k) {}
 
   private:
-    // PrepareFrame of an aggregate node's children: large sets of primitives without frame
-    // work of their own on the build's threads, anything else one at a time.
-    void PrepareChildren(double frameTime, double shutter);
+    // PrepareFrame of an aggregate node's children: in a large set, the primitives without
+    // frame work of their own on the build's threads, then anything else one at a time in
+    // order. Returns what the aggregate needs to know of them.
+    struct ChildrenSummary {
+        bool allBounded = true;
+        bool anyTransparent = false;  // some child's HasTransparentSurfaceBelow()
+        void Add(const Object& child) {
+            allBounded = allBounded && child.bounded_;
+            anyTransparent = anyTransparent || child.transparentBelow_;
+        }
+    };
+    ChildrenSummary PrepareChildren(double frameTime, double shutter);
 
     // Intersect for a primitive node, with the ray already in the node's object space.
     bool IntersectPrimitive(const Ray& ray, double tMin, double& tMax, HitRecord& hit) const {
@@ -196,6 +209,7 @@ class Object {
     double preparedFor_ = -1e300;
     Kind kind_;
     bool bounded_ = false;
+    bool transparentBelow_ = false;
 };
 
 }  // namespace rs

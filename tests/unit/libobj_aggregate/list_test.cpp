@@ -11,6 +11,7 @@
 #include "libcommon/random.h"
 #include "libcommon/stats.h"
 #include "libobj/object.h"
+#include "libsurf/surface.h"
 #include "test_shapes.h"
 
 namespace rs {
@@ -82,6 +83,72 @@ TEST(ListAggregate, ChildrenPreparedConcurrentlyGetTheirOwnBoxes) {
     EXPECT_EQ(list->BoundsInParent().lo, serial->BoundsInParent().lo);
     EXPECT_EQ(list->BoundsInParent().hi, serial->BoundsInParent().hi);
     EXPECT_NEAR(children[4]->BoundsInParent().lo.z, 0.5 - 0.014, 1e-12);  // its transform applied
+}
+
+// PrepareFrame's answers about the children (the list is bounded only when every child is;
+// a transparent surface anywhere below, instances looking into their targets) are the same
+// whether a large list's children are prepared on one thread or in chunks on two, with the
+// children that are not plain primitives (instances, a plane) prepared after the chunks.
+TEST(ListAggregate, ChildrenSummaryIsTheSameSeriallyAndInChunks) {
+    const auto opaque = std::make_shared<Surface>(Surface::Default());
+    auto clear = std::make_shared<Surface>(Surface::Default());
+    clear->transp = 0.5;
+    auto nearlyOpaque = std::make_shared<Surface>(Surface::Default());
+    nearlyOpaque->transp = 0.5 * kEpsilon;  // below the shadows' threshold
+    const ParallelLoop twoThreads = [](long count, const std::function<void(long)>& body) {
+        std::atomic<long> next{0};
+        const auto work = [&] {
+            for (long i; (i = next.fetch_add(1)) < count;) body(i);
+        };
+        std::thread helper(work);
+        work();
+        helper.join();
+    };
+    struct Case {
+        const char* what;
+        std::shared_ptr<Surface> at17000;  // the surface of child 17000 (others: opaque)
+        bool transparentInstance;          // child 30000 an instance of a clear sphere
+        bool plane;                        // child 25000 an unbounded plane
+        bool transparent, bounded;         // expected
+    };
+    const Case cases[] = {
+        {"all opaque", opaque, false, false, false, true},
+        {"one clear child", clear, false, false, true, true},
+        {"transp below the threshold", nearlyOpaque, false, false, false, true},
+        {"a clear instanced target", opaque, true, false, true, true},
+        {"an unbounded child", opaque, false, true, false, false},
+    };
+    for (const Case& c : cases) {
+        for (const bool parallel : {false, true}) {
+            SCOPED_TRACE(::testing::Message() << c.what << (parallel ? ", in chunks" : ", serially"));
+            std::vector<std::shared_ptr<Object>> children;
+            for (int i = 0; i < 40000; ++i) {
+                std::shared_ptr<Object> child = Sphere({0.001 * i, 0, 0}, 0.01);
+                child->surface = i == 17000 ? c.at17000 : opaque;
+                if (i == 30000 && c.transparentInstance) {
+                    auto target = std::make_shared<ListAggregate>();
+                    target->AddChild(Sphere({0, 1, 0}, 0.5));
+                    auto targetNode = Object::MakeAggregate(target);
+                    targetNode->surface = clear;
+                    child = Object::MakeInstance(targetNode);
+                }
+                if (i == 25000 && c.plane) child = Object::MakePrimitive(std::make_shared<TestPlane>());
+                children.push_back(std::move(child));
+            }
+            std::shared_ptr<Object> list;
+            {
+                const ParallelBuildScope scope(parallel ? &twoThreads : nullptr);
+                list = MakeList(children);
+            }
+            EXPECT_EQ(list->HasTransparentSurfaceBelow(), c.transparent);
+            EXPECT_EQ(list->IsBounded(), c.bounded);
+        }
+    }
+    // The aggregate's own surface counts too.
+    const auto clearList = Object::MakeAggregate(std::make_shared<ListAggregate>());
+    clearList->surface = clear;
+    clearList->PrepareFrame(0, 0);
+    EXPECT_TRUE(clearList->HasTransparentSurfaceBelow());
 }
 
 // The list's surface-area hierarchy against a brute-force loop over the children, on clouds
