@@ -76,77 +76,79 @@ void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split spl
     top.reserve(parallel ? 4 * kBuildTasks : 2 * boxes.size());
     BuildNode(top, buildItems, 0, count, input, split, 0, count / kBuildTasks,
               parallel ? &deferred : nullptr);
-    if (deferred.empty()) {
-        nodes_ = std::move(top);
-    } else {
-        // The largest first, for balance; each task partitions only its own items.
-        std::vector<int> order(deferred.size());
-        for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
-        std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-            return deferred[a].end - deferred[a].begin > deferred[b].end - deferred[b].begin;
-        });
-        std::vector<std::vector<Node>> parts(deferred.size());
-        RunBuildLoop(static_cast<long>(order.size()), [&](long i) {
-            const Subtree& task = deferred[order[i]];
-            std::vector<Node>& part = parts[order[i]];
-            part.reserve(2 * static_cast<size_t>(task.end - task.begin));
-            BuildNode(part, buildItems, task.begin, task.end, input, split, task.depth, 0, nullptr);
-        });
-        // Splice in preorder, so the nodes lie exactly where one recursive build puts them.
-        std::vector<int> taskAt(top.size(), -1);
-        for (size_t k = 0; k < deferred.size(); ++k) taskAt[deferred[k].node] = static_cast<int>(k);
-        nodes_.reserve(2 * boxes.size());
-        const auto splice = [&](const auto& self, int node) -> void {
-            const int index = static_cast<int>(nodes_.size());
-            if (taskAt[node] >= 0) {
-                for (Node n : parts[taskAt[node]]) {
-                    if (n.count == 0) n.right += index;
-                    nodes_.push_back(n);
-                }
-                return;
-            }
-            nodes_.push_back(top[node]);
-            if (top[node].count > 0) return;
-            self(self, node + 1);
-            nodes_[index].right = static_cast<int>(nodes_.size());
-            self(self, top[node].right);
-        };
-        splice(splice, 0);
+    // The largest first, for balance; each task partitions only its own items.
+    std::vector<int> order(deferred.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        return deferred[a].end - deferred[a].begin > deferred[b].end - deferred[b].begin;
+    });
+    std::vector<std::vector<Node>> parts(deferred.size());
+    RunBuildLoop(static_cast<long>(order.size()), [&](long i) {
+        const Subtree& task = deferred[order[i]];
+        std::vector<Node>& part = parts[order[i]];
+        part.reserve(2 * static_cast<size_t>(task.end - task.begin));
+        BuildNode(part, buildItems, task.begin, task.end, input, split, task.depth, 0, nullptr);
+    });
+    std::vector<int> partAt;
+    if (!deferred.empty()) {
+        partAt.assign(top.size(), -1);
+        for (size_t k = 0; k < deferred.size(); ++k) partAt[deferred[k].node] = static_cast<int>(k);
     }
-    BuildWideTree();
-    const Bounds3& root = nodes_[0].box;
+    const BinaryParts tree{top, parts, partAt};
+    BuildWideTree(tree);
+    const Bounds3 root = NodeAt(tree, Resolve(tree, {-1, 0})).box;
     // A root of zero area leaves every term 0 (see ExpectedCost).
     if (const double rootArea = HalfArea(root); rootArea > 0) expectedCost_ /= rootArea;
     scale_ = std::max({std::fabs(FloatAtOrBelow(root.lo.x)), std::fabs(FloatAtOrBelow(root.lo.y)),
                        std::fabs(FloatAtOrBelow(root.lo.z)), std::fabs(FloatAtOrAbove(root.hi.x)),
                        std::fabs(FloatAtOrAbove(root.hi.y)), std::fabs(FloatAtOrAbove(root.hi.z))});
+    // A median build keeps the binary tree for the walks in entry order and by point, in the
+    // preorder one recursive build gives; the SAH's hierarchies only use the wide walk, and
+    // the splice was 8.5 ms of tree's two-thread setup on one thread.
+    if (split != Split::Median) return;
+    if (parts.empty()) {
+        nodes_ = std::move(top);
+        return;
+    }
+    nodes_.reserve(2 * boxes.size());
+    const auto splice = [&](const auto& self, int node) -> void {
+        const int index = static_cast<int>(nodes_.size());
+        if (partAt[node] >= 0) {
+            for (Node n : parts[partAt[node]]) {
+                if (n.count == 0) n.right += index;
+                nodes_.push_back(n);
+            }
+            return;
+        }
+        nodes_.push_back(top[node]);
+        if (top[node].count > 0) return;
+        self(self, node + 1);
+        nodes_[index].right = static_cast<int>(nodes_.size());
+        self(self, top[node].right);
+    };
+    splice(splice, 0);
 }
 
-int BoundingVolumeHierarchy::SubtreeEnd(int node) const {
-    while (nodes_[node].count == 0) node = nodes_[node].right;
-    return node + 1;
-}
-
-void BoundingVolumeHierarchy::BuildWideTree() {
-    const int nodeCount = static_cast<int>(nodes_.size());
-    const int deferBelow = nodeCount >= kParallelWideNodes ? nodeCount / kWideTasks : 0;
+void BoundingVolumeHierarchy::BuildWideTree(const BinaryParts& tree) {
     WidePart top;
-    std::vector<int> deferred;
-    if (deferBelow == 0) top.nodes.reserve(nodes_.size() / 2 + 1);  // the whole tree
-    BuildWide(0, top, deferBelow, &deferred);
+    std::vector<int> deferredParts;
+    if (tree.parts.empty()) top.nodes.reserve(tree.top.size() / 2 + 1);  // the whole tree
+    BuildWide(tree, Resolve(tree, {-1, 0}), top, &deferredParts);
     expectedCost_ = top.cost;
-    if (deferred.empty()) {  // the top is the tree, already in preorder
+    if (deferredParts.empty()) {  // the top is the tree, already in preorder
         wide_ = std::move(top.nodes);
         return;
     }
-    std::vector<WidePart> parts(deferred.size());
+    std::vector<WidePart> parts(deferredParts.size());
+    size_t binaryNodes = tree.top.size();
+    for (const std::vector<Node>& part : tree.parts) binaryNodes += part.size();
     RunBuildLoop(static_cast<long>(parts.size()), [&](long p) {
-        parts[p].nodes.reserve(static_cast<size_t>(SubtreeEnd(deferred[p]) - deferred[p]) / 2 + 1);
-        BuildWide(deferred[p], parts[p], 0, nullptr);
+        parts[p].nodes.reserve(tree.parts[deferredParts[p]].size() / 2 + 1);
+        BuildWide(tree, {deferredParts[p], 0}, parts[p], nullptr);
     });
     // Splice in preorder: a top node, then each lane's subtree in lane order.
     wide_.clear();
-    wide_.reserve(nodes_.size() / 2 + 1);
+    wide_.reserve(binaryNodes / 2 + 1);
     for (const WidePart& part : parts) expectedCost_ += part.cost;
     const auto append = [&](const WidePart& part) {
         const int offset = static_cast<int>(wide_.size());
@@ -174,51 +176,56 @@ void BoundingVolumeHierarchy::BuildWideTree() {
     splice(splice, 0);
 }
 
-int BoundingVolumeHierarchy::BuildWide(int node, WidePart& out, int deferBelow,
-                                       std::vector<int>* deferred) const {
-    int lanes[4];
+int BoundingVolumeHierarchy::BuildWide(const BinaryParts& tree, NodeRef node, WidePart& out,
+                                       std::vector<int>* deferredParts) const {
+    // A lane that stays whole: a leaf, or from the top a part's root (built as its task).
+    const auto whole = [&](NodeRef lane) {
+        return NodeAt(tree, lane).count > 0 || (deferredParts != nullptr && lane.part >= 0);
+    };
+    const auto left = [&](NodeRef n) { return Resolve(tree, {n.part, n.index + 1}); };
+    const auto right = [&](NodeRef n) { return Resolve(tree, {n.part, NodeAt(tree, n).right}); };
+    NodeRef lanes[4];
     int laneCount = 0;
-    if (nodes_[node].count > 0) {
+    if (NodeAt(tree, node).count > 0) {
         lanes[laneCount++] = node;  // a leaf root
     } else {
-        lanes[laneCount++] = node + 1;
-        lanes[laneCount++] = nodes_[node].right;
+        lanes[laneCount++] = left(node);
+        lanes[laneCount++] = right(node);
     }
     while (laneCount < 4) {
         int widest = -1;
         double widestArea = -1;
         for (int k = 0; k < laneCount; ++k) {
-            const Node& lane = nodes_[lanes[k]];
-            if (lane.count > 0) continue;
-            const double area = HalfArea(lane.box);
+            if (whole(lanes[k])) continue;
+            const double area = HalfArea(NodeAt(tree, lanes[k]).box);
             if (area > widestArea) {
                 widestArea = area;
                 widest = k;
             }
         }
         if (widest < 0) break;
-        const int split = lanes[widest];
-        lanes[widest] = split + 1;
-        lanes[laneCount++] = nodes_[split].right;
+        const NodeRef split = lanes[widest];
+        lanes[widest] = left(split);
+        lanes[laneCount++] = right(split);
     }
     const int index = static_cast<int>(out.nodes.size());
     out.nodes.emplace_back();
-    out.cost += HalfArea(nodes_[node].box);
+    out.cost += HalfArea(NodeAt(tree, node).box);
     for (int k = 0; k < 4; ++k) {
         int child = 0, count = 0;
         Bounds3 box;  // empty for unused lanes
         if (k < laneCount) {
-            const Node& lane = nodes_[lanes[k]];
+            const Node& lane = NodeAt(tree, lanes[k]);
             box = lane.box;
             if (lane.count > 0) {
                 child = lane.first;
                 count = lane.count;
                 out.cost += HalfArea(lane.box) * count;
-            } else if (deferBelow > 0 && SubtreeEnd(lanes[k]) - lanes[k] <= deferBelow) {
-                child = kDeferredLane - static_cast<int>(deferred->size());
-                deferred->push_back(lanes[k]);
+            } else if (whole(lanes[k])) {
+                child = kDeferredLane - static_cast<int>(deferredParts->size());
+                deferredParts->push_back(lanes[k].part);
             } else {
-                child = BuildWide(lanes[k], out, deferBelow, deferred);  // may move out.nodes
+                child = BuildWide(tree, lanes[k], out, deferredParts);  // may move out.nodes
             }
         }
         WideNode& w = out.nodes[index];

@@ -24,12 +24,13 @@ class BoundingVolumeHierarchy {
         // Where the surface-area heuristic (binned centroids, all three axes) expects the
         // fewest box and item tests for rays through the node; a node stays a leaf (of at
         // most kMaxSahLeaf items) when no split is expected to pay. Below kMaxSahDepth
-        // levels it falls back to median splits, so the depth stays under 64.
+        // levels it falls back to median splits, so the depth stays under 64. Only the wide
+        // tree is kept (Traverse), for the scene's lists and grids.
         SurfaceArea,
     };
     // Builds over `boxes` (item i has box boxes[i]).
     void Build(const std::vector<Bounds3>& boxes, Split split = Split::Median);
-    bool IsEmpty() const { return nodes_.empty(); }
+    bool IsEmpty() const { return wide_.empty(); }
     // The surface-area estimate of the wide walk's work for a ray through the root box, in
     // units of one item visit: each wide node counts one (its four-box test), each leaf lane
     // its item count, both weighted by the chance that a random ray meeting the root box
@@ -125,7 +126,8 @@ class BoundingVolumeHierarchy {
 
     // As Traverse (children by entry parameter, a node skipped once its entry lies beyond
     // the shrunken tMax), but on the binary nodes with exact double box clips, two children
-    // at a time: the walk the implicit patches' evaluation counts are defined by (the wide
+    // at a time (median builds only: an SAH build keeps only the wide tree, and this visits
+    // nothing): the walk the implicit patches' evaluation counts are defined by (the wide
     // walk's float entries can order two patches differently). Each box is clipped once,
     // when its parent is visited, and stacked with its entry `near`: the clip to
     // (tMin, tMax) with a smaller tMax at its turn succeeds exactly when near <= tMax (near
@@ -172,7 +174,7 @@ class BoundingVolumeHierarchy {
     }
 
     // Calls visit(i) once for every item whose box contains p (and possibly others sharing
-    // its leaf).
+    // its leaf). Median builds only, as TraverseInEntryOrder.
     template <class Visit>
     void VisitContaining(const Vec3& p, Visit&& visit) const {
         if (nodes_.empty()) return;
@@ -303,24 +305,42 @@ class BoundingVolumeHierarchy {
         double cost = 0;  // the parts' terms of expectedCost_, unscaled
     };
     static constexpr int kDeferredLane = -1;
+    // The binary tree as Build made it: its top levels and, when the build was split into
+    // tasks, the subtrees built apart, each in preorder with indices local to its vector.
+    // Top node t with partAt[t] = p >= 0 is a placeholder for part p, whose root is
+    // parts[p][0]. A node is named by its vector (part -1: the top) and its index there.
+    struct BinaryParts {
+        const std::vector<Node>& top;
+        const std::vector<std::vector<Node>>& parts;
+        const std::vector<int>& partAt;  // by top node (empty when there are no parts)
+    };
+    struct NodeRef {
+        int part, index;
+    };
+    // The node `ref` names, a placeholder replaced by the root of its part.
+    static NodeRef Resolve(const BinaryParts& tree, NodeRef ref) {
+        if (ref.part < 0 && !tree.partAt.empty() && tree.partAt[ref.index] >= 0)
+            return {tree.partAt[ref.index], 0};
+        return ref;
+    }
+    static const Node& NodeAt(const BinaryParts& tree, NodeRef ref) {
+        return ref.part < 0 ? tree.top[ref.index] : tree.parts[ref.part][ref.index];
+    }
     // Appends to `out` the wide node whose lanes are binary node `node`'s descendants two
     // levels down at most (the larger-area interior lane split first, until four),
     // recursively, and returns its index in out. Adds the node's and its leaf lanes' terms,
-    // unscaled, to out.cost. An interior lane whose binary subtree has at most `deferBelow`
-    // nodes is not built but appended to `deferred` (when given). Wide depth <= binary
-    // depth < 64.
-    int BuildWide(int node, WidePart& out, int deferBelow, std::vector<int>* deferred) const;
-    // One past the last node of binary node `node`'s subtree (preorder: its rightmost leaf).
-    int SubtreeEnd(int node) const;
-    // Builds wide_ and expectedCost_ from nodes_: on a large tree the top first, then the
-    // subtrees below it as tasks (RunBuildLoop), spliced in the preorder one recursive build
-    // gives (the tree does not depend on the thread count).
-    void BuildWideTree();
-    // Below this many binary nodes the wide tree is built as one task; above it, subtrees
-    // of at most a kWideTasks-th of the nodes are tasks.
-    static constexpr int kParallelWideNodes = 8192, kWideTasks = 64;
+    // unscaled, to out.cost. With `deferredParts` (building the top), a lane that is an
+    // interior part root is neither split nor built but appended to deferredParts. Wide
+    // depth <= binary depth < 64.
+    int BuildWide(const BinaryParts& tree, NodeRef node, WidePart& out,
+                  std::vector<int>* deferredParts) const;
+    // Builds wide_ and expectedCost_ from the binary tree: the top, then the parts below it
+    // as tasks (RunBuildLoop), spliced in preorder (the tree does not depend on the thread
+    // count: the parts are Build's, made by item counts).
+    void BuildWideTree(const BinaryParts& tree);
 
-    std::vector<Node> nodes_;  // the binary tree (VisitContaining, and the source of wide_)
+    // The binary tree, kept for median builds only (TraverseInEntryOrder, VisitContaining).
+    std::vector<Node> nodes_;
     std::vector<WideNode> wide_;
     double scale_ = 0;  // the largest coordinate magnitude of the wide boxes
     double expectedCost_ = 0;
