@@ -44,7 +44,8 @@ void ChunkedPass(int begin, int end, Part& result, Pass&& pass, Merge&& merge) {
 
 void BoundingVolumeHierarchy::Build(const std::vector<Bounds3>& boxes, Split split) {
     nodes_.clear();
-    wide_.clear();
+    wide_.reset();
+    wideCount_ = 0;
     expectedCost_ = 0;
     const int count = static_cast<int>(boxes.size());
     items_.resize(boxes.size());
@@ -135,45 +136,51 @@ void BoundingVolumeHierarchy::BuildWideTree(const BinaryParts& tree) {
     if (tree.parts.empty()) top.nodes.reserve(tree.top.size() / 2 + 1);  // the whole tree
     BuildWide(tree, Resolve(tree, {-1, 0}), top, &deferredParts);
     expectedCost_ = top.cost;
-    if (deferredParts.empty()) {  // the top is the tree, already in preorder
-        wide_ = std::move(top.nodes);
-        return;
-    }
     std::vector<WidePart> parts(deferredParts.size());
-    size_t binaryNodes = tree.top.size();
-    for (const std::vector<Node>& part : tree.parts) binaryNodes += part.size();
     RunBuildLoop(static_cast<long>(parts.size()), [&](long p) {
         parts[p].nodes.reserve(tree.parts[deferredParts[p]].size() / 2 + 1);
         BuildWide(tree, {deferredParts[p], 0}, parts[p], nullptr);
     });
-    // Splice in preorder: a top node, then each lane's subtree in lane order.
-    wide_.clear();
-    wide_.reserve(binaryNodes / 2 + 1);
     for (const WidePart& part : parts) expectedCost_ += part.cost;
-    const auto append = [&](const WidePart& part) {
-        const int offset = static_cast<int>(wide_.size());
-        for (WideNode w : part.nodes) {
-            for (int k = 0; k < 4; ++k)
-                if (w.count[k] == 0 && w.child[k] != 0) w.child[k] += offset;  // interior
-            wide_.push_back(w);
-        }
-    };
-    const auto splice = [&](const auto& self, int t) -> void {
-        const int index = static_cast<int>(wide_.size());
-        wide_.push_back(top.nodes[t]);
+    // Spliced in preorder: a top node, then each lane's subtree in lane order. Where each
+    // top node and part goes is worked out first; the parts are then copied there as tasks
+    // (each writes only its own range), their interior lanes moved by their offset.
+    std::vector<int> topAt(top.nodes.size()), partOffset(parts.size());
+    int placed = 0;
+    const auto place = [&](const auto& self, int t) -> void {
+        topAt[t] = placed++;
         for (int k = 0; k < 4; ++k) {
             const int child = top.nodes[t].child[k];
             if (top.nodes[t].count[k] > 0 || child == 0) continue;  // a leaf or unused lane
             if (child <= kDeferredLane) {
-                wide_[index].child[k] = static_cast<int>(wide_.size());
-                append(parts[kDeferredLane - child]);
+                partOffset[kDeferredLane - child] = placed;
+                placed += static_cast<int>(parts[kDeferredLane - child].nodes.size());
             } else {
-                wide_[index].child[k] = static_cast<int>(wide_.size());
                 self(self, child);
             }
         }
     };
-    splice(splice, 0);
+    place(place, 0);
+    wide_ = std::make_unique_for_overwrite<WideNode[]>(static_cast<size_t>(placed));
+    wideCount_ = placed;
+    for (size_t t = 0; t < top.nodes.size(); ++t) {
+        WideNode w = top.nodes[t];
+        for (int k = 0; k < 4; ++k) {
+            if (w.count[k] > 0 || w.child[k] == 0) continue;
+            w.child[k] = w.child[k] <= kDeferredLane ? partOffset[kDeferredLane - w.child[k]]
+                                                     : topAt[w.child[k]];
+        }
+        wide_[topAt[t]] = w;
+    }
+    RunBuildLoop(static_cast<long>(parts.size()), [&](long p) {
+        const int offset = partOffset[p];
+        WideNode* out = &wide_[offset];
+        for (WideNode w : parts[p].nodes) {
+            for (int k = 0; k < 4; ++k)
+                if (w.count[k] == 0 && w.child[k] != 0) w.child[k] += offset;  // interior
+            *out++ = w;
+        }
+    });
 }
 
 int BoundingVolumeHierarchy::BuildWide(const BinaryParts& tree, NodeRef node, WidePart& out,

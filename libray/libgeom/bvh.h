@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -30,7 +31,7 @@ class BoundingVolumeHierarchy {
     };
     // Builds over `boxes` (item i has box boxes[i]).
     void Build(const std::vector<Bounds3>& boxes, Split split = Split::Median);
-    bool IsEmpty() const { return wide_.empty(); }
+    bool IsEmpty() const { return wideCount_ == 0; }
     // The surface-area estimate of the wide walk's work for a ray through the root box, in
     // units of one item visit: each wide node counts one (its four-box test), each leaf lane
     // its item count, both weighted by the chance that a random ray meeting the root box
@@ -52,7 +53,7 @@ class BoundingVolumeHierarchy {
     // 2^-21 of it may be visited too, which cannot change a nearest hit).
     template <bool kStopAtFirstHit = false, class Visit>
     bool Traverse(const Ray& ray, double tMin, double& tMax, Visit&& visit) const {
-        if (wide_.empty()) return false;
+        if (wideCount_ == 0) return false;
         FloatRay fr;
         if (!fr.Set(ray, scale_)) {
             // Beyond single precision's range: every item, in order.
@@ -341,7 +342,10 @@ class BoundingVolumeHierarchy {
 
     // The binary tree, kept for median builds only (TraverseInEntryOrder, VisitContaining).
     std::vector<Node> nodes_;
-    std::vector<WideNode> wide_;
+    // The wide tree in preorder (allocated without initialisation: the splice's tasks write
+    // each node once, so a large tree's pages are first touched on the build's threads).
+    std::unique_ptr<WideNode[]> wide_;
+    int wideCount_ = 0;
     double scale_ = 0;  // the largest coordinate magnitude of the wide boxes
     double expectedCost_ = 0;
     std::vector<int> items_;
