@@ -104,30 +104,34 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
     const Vec3 extent = gridBox_.Extent();
     voxelSize_ = {extent.x / n_[0], extent.y / n_[1], extent.z / n_[2]};
 
-    // Each child's voxel range, computed once: lo[3], hi[3] (hi < lo for an empty box), and
-    // the entry count first, so a grid too fine for its children is refused before any
-    // entry is stored or visited. In chunks of children on the build's threads (each chunk
-    // writes its own children's ranges and its own count; RunBuildLoop returns after all).
-    std::vector<int> ranges(6 * bounded_.size());
+    // Each child's voxel range: lo[3], hi[3] (hi < lo for an empty box); returns how many
+    // voxels it covers.
+    const auto voxelRange = [&](size_t i, int* r) -> uint64_t {
+        const Bounds3& box = childBoxes_[i];
+        if (box.IsEmpty()) {
+            std::fill(r, r + 6, 0);
+            r[3] = -1;
+            return 0;
+        }
+        uint64_t cells = 1;
+        for (int a = 0; a < 3; ++a) {
+            r[a] = VoxelOf(box.lo[a], a);
+            r[3 + a] = VoxelOf(box.hi[a], a);
+            cells *= static_cast<uint64_t>(r[3 + a] - r[a] + 1);
+        }
+        return cells;
+    };
+    // The entry count first, so a grid too fine for its children is refused before any
+    // entry is stored or visited, and the ranges are stored only for a voxel walk (6 ints a
+    // child: megabytes on a large scene, which mostly takes the hierarchy). In chunks of
+    // children on the build's threads (each chunk writes its own count; RunBuildLoop
+    // returns after all).
     std::vector<uint64_t> chunkEntries((bounded_.size() + kChunk - 1) / kChunk, 0);
     RunBuildLoopInChunks(bounded_.size(), kChunk, [&](size_t begin, size_t end) {
-        const size_t chunk = begin / kChunk;
-        for (size_t i = begin; i < end; ++i) {
-            const Bounds3& box = childBoxes_[i];
-            int* r = &ranges[6 * i];
-            if (box.IsEmpty()) {
-                std::fill(r, r + 6, 0);
-                r[3] = -1;
-                continue;
-            }
-            uint64_t cells = 1;
-            for (int a = 0; a < 3; ++a) {
-                r[a] = VoxelOf(box.lo[a], a);
-                r[3 + a] = VoxelOf(box.hi[a], a);
-                cells *= static_cast<uint64_t>(r[3 + a] - r[a] + 1);
-            }
-            chunkEntries[chunk] += cells;
-        }
+        int r[6];
+        uint64_t cells = 0;
+        for (size_t i = begin; i < end; ++i) cells += voxelRange(i, r);
+        chunkEntries[begin / kChunk] = cells;
     });
     uint64_t entries = 0;
     for (uint64_t e : chunkEntries) entries += e;
@@ -147,6 +151,10 @@ void GridAggregate::PrepareFrame(double /*frameTime*/, double /*shutter*/) {
         }
         hierarchy_ = ChildHierarchy{};
     }
+    std::vector<int> ranges(6 * bounded_.size());
+    RunBuildLoopInChunks(bounded_.size(), kChunk, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) voxelRange(i, &ranges[6 * i]);
+    });
     if (bounded_.size() > slotCount_) {
         slotCount_ = bounded_.size();
         firstSlot_ = gSlotsAllocated.fetch_add(slotCount_, std::memory_order_relaxed);
