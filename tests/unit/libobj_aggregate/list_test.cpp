@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -33,6 +34,17 @@ std::shared_ptr<Object> MakeList(std::vector<std::shared_ptr<Object>> children) 
     return node;
 }
 
+// A build loop on two real threads, which take indices from a shared counter.
+void RunOnTwoThreads(long count, const std::function<void(long)>& body) {
+    std::atomic<long> next{0};
+    const auto work = [&] {
+        for (long i; (i = next.fetch_add(1)) < count;) body(i);
+    };
+    std::thread helper(work);
+    work();
+    helper.join();
+}
+
 // HasPrimitive agrees with PrimitiveCount() > 0 through empty lists and instances.
 TEST(ListAggregate, HasPrimitiveLooksThroughEmptyListsAndInstances) {
     const auto empty = MakeList({});
@@ -61,15 +73,7 @@ TEST(ListAggregate, ChildrenPreparedConcurrentlyGetTheirOwnBoxes) {
     };
     const auto serialChildren = makeChildren();
     const auto serial = MakeList(serialChildren);
-    const ParallelLoop twoThreads = [](long count, const std::function<void(long)>& body) {
-        std::atomic<long> next{0};
-        const auto work = [&] {
-            for (long i; (i = next.fetch_add(1)) < count;) body(i);
-        };
-        std::thread helper(work);
-        work();
-        helper.join();
-    };
+    const ParallelLoop twoThreads = RunOnTwoThreads;
     const auto children = makeChildren();
     std::shared_ptr<Object> list;
     {
@@ -95,15 +99,7 @@ TEST(ListAggregate, ChildrenSummaryIsTheSameSeriallyAndInChunks) {
     clear->transp = 0.5;
     auto nearlyOpaque = std::make_shared<Surface>(Surface::Default());
     nearlyOpaque->transp = 0.5 * kEpsilon;  // below the shadows' threshold
-    const ParallelLoop twoThreads = [](long count, const std::function<void(long)>& body) {
-        std::atomic<long> next{0};
-        const auto work = [&] {
-            for (long i; (i = next.fetch_add(1)) < count;) body(i);
-        };
-        std::thread helper(work);
-        work();
-        helper.join();
-    };
+    const ParallelLoop twoThreads = RunOnTwoThreads;
     struct Case {
         const char* what;
         std::shared_ptr<Surface> at17000;  // the surface of child 17000 (others: opaque)
