@@ -296,7 +296,7 @@ int BoundingVolumeHierarchy::SahPartition(BuildItems order, int begin, int end,
     const SahBox* boxes = order.sahBoxes;
     // The three axes' bins of the item at position i.
     const auto binsOf = [&](int i) {
-        const Float4 rel = ((boxes[i].lo + boxes[i].hi) * 0.5f - cLo) * binsPerUnit;
+        const Float4 rel = (boxes[i].Centre() - cLo) * binsPerUnit;
         const Int4 b = __builtin_convertvector(rel > 0 ? rel : Float4{}, Int4);
         return b < kBins - 1 ? b : Int4{} + (kBins - 1);
     };
@@ -341,8 +341,8 @@ int BoundingVolumeHierarchy::SahPartition(BuildItems order, int begin, int end,
         }
         void Add(int a, int k, const Float4& boxLo, const Float4& boxHi, int n) {
             counts[a][k] += n;
-            lo[a][k] = boxLo < lo[a][k] ? boxLo : lo[a][k];
-            hi[a][k] = boxHi > hi[a][k] ? boxHi : hi[a][k];
+            lo[a][k] = LaneMin(boxLo, lo[a][k]);
+            hi[a][k] = LaneMax(boxHi, hi[a][k]);
         }
     };
     Bins bins;
@@ -383,8 +383,8 @@ int BoundingVolumeHierarchy::SahPartition(BuildItems order, int begin, int end,
         int n = 0;
         for (int j = m - 1; j > 0; --j) {
             const int k = filled[j];
-            accLo = binLo[a][k] < accLo ? binLo[a][k] : accLo;
-            accHi = binHi[a][k] > accHi ? binHi[a][k] : accHi;
+            accLo = LaneMin(binLo[a][k], accLo);
+            accHi = LaneMax(binHi[a][k], accHi);
             n += counts[a][k];
             rightCost[j] = halfArea(accLo, accHi) * n;
         }
@@ -393,8 +393,8 @@ int BoundingVolumeHierarchy::SahPartition(BuildItems order, int begin, int end,
         n = 0;
         for (int j = 0; j + 1 < m; ++j) {
             const int k = filled[j];
-            accLo = binLo[a][k] < accLo ? binLo[a][k] : accLo;
-            accHi = binHi[a][k] > accHi ? binHi[a][k] : accHi;
+            accLo = LaneMin(binLo[a][k], accLo);
+            accHi = LaneMax(binHi[a][k], accHi);
             n += counts[a][k];
             const double cost = 1 + (halfArea(accLo, accHi) * n + rightCost[j + 1]) / area;
             if (cost < bestCost) {
@@ -458,19 +458,19 @@ int BoundingVolumeHierarchy::BuildNode(std::vector<Node>& nodes, BuildItems orde
             [&](FloatBounds& part, int from, int to) {
                 Float4 lo = part.lo, hi = part.hi, centreLo = part.centreLo, centreHi = part.centreHi;
                 for (int i = from; i < to; ++i) {
-                    const Float4 centre = (boxes[i].lo + boxes[i].hi) * 0.5f;
-                    lo = boxes[i].lo < lo ? boxes[i].lo : lo;
-                    hi = boxes[i].hi > hi ? boxes[i].hi : hi;
-                    centreLo = centre < centreLo ? centre : centreLo;
-                    centreHi = centre > centreHi ? centre : centreHi;
+                    const Float4 centre = boxes[i].Centre();
+                    lo = LaneMin(boxes[i].lo, lo);
+                    hi = LaneMax(boxes[i].hi, hi);
+                    centreLo = LaneMin(centre, centreLo);
+                    centreHi = LaneMax(centre, centreHi);
                 }
                 part = {lo, hi, centreLo, centreHi};
             },
             [](FloatBounds& into, const FloatBounds& part) {
-                into.lo = part.lo < into.lo ? part.lo : into.lo;
-                into.hi = part.hi > into.hi ? part.hi : into.hi;
-                into.centreLo = part.centreLo < into.centreLo ? part.centreLo : into.centreLo;
-                into.centreHi = part.centreHi > into.centreHi ? part.centreHi : into.centreHi;
+                into.lo = LaneMin(part.lo, into.lo);
+                into.hi = LaneMax(part.hi, into.hi);
+                into.centreLo = LaneMin(part.centreLo, into.centreLo);
+                into.centreHi = LaneMax(part.centreHi, into.centreHi);
             });
         const auto toVec3 = [](const Float4& v) { return Vec3{v[0], v[1], v[2]}; };
         bounds.box.lo = toVec3(floatBounds.lo);

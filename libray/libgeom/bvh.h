@@ -232,6 +232,10 @@ class BoundingVolumeHierarchy {
     static constexpr int kStackSize = 3 * 64 + 4;
     // x in every lane.
     static Float4 Splat(float x) { return Float4{x, x, x, x}; }
+    // Lane by lane, x where it is below (above) `bound`, else bound: a NaN in x leaves
+    // bound as it was.
+    static Float4 LaneMin(Float4 x, Float4 bound) { return x < bound ? x : bound; }
+    static Float4 LaneMax(Float4 x, Float4 bound) { return x > bound ? x : bound; }
     // |x| in every lane (the sign bits cleared; a NaN stays a NaN).
     static Float4 Abs(Float4 x) {
         typedef int Int4 __attribute__((vector_size(16)));
@@ -265,6 +269,7 @@ class BoundingVolumeHierarchy {
     // conservative node boxes (each holds its item's double box).
     struct SahBox {
         Float4 lo, hi;
+        Float4 Centre() const { return (lo + hi) * 0.5f; }  // what the SAH bins by
     };
     struct BuildItems {
         std::vector<int>& items;
@@ -363,8 +368,8 @@ inline int BoundingVolumeHierarchy::WideNode::Clip(const FloatRay& ray, Float4 t
     for (int a = 0; a < 3; ++a) {
         const Float4 t0 = (planes[ray.nearPlane[a]] - ray.nearOrigin[a]) * ray.invDir[a];
         const Float4 t1 = (planes[ray.farPlane[a]] - ray.farOrigin[a]) * ray.invDir[a];
-        near = t0 > near ? t0 : near;
-        far = t1 < far ? t1 : far;
+        near = LaneMax(t0, near);
+        far = LaneMin(t1, far);
     }
     constexpr Float4 kRelative{0x1p-21f, 0x1p-21f, 0x1p-21f, 0x1p-21f};
     constexpr Float4 kAbsolute{0x1p-126f, 0x1p-126f, 0x1p-126f, 0x1p-126f};
